@@ -1,0 +1,46 @@
+// The Tippe-Top scene of Leine & Glocker (2003), used by Möller, Leine, Glocker (ESMC 2009),
+// with the parameters of ../shared/reference/tippe-top.md.
+#ifndef NONSMOOTH_SIM_CORE_TIPPE_TOP_H_
+#define NONSMOOTH_SIM_CORE_TIPPE_TOP_H_
+
+#include "nonsmooth_sim/core/scene.h"
+
+namespace nonsmooth_sim {
+
+struct TippeTopParameters {
+  double mass = 6e-3;              ///< m [kg]
+  double inertia_equatorial = 8e-7;  ///< A = B [kg m²]
+  double inertia_axial = 7e-7;     ///< C [kg m²]
+  double big_radius = 0.015;       ///< R1 [m]
+  double peg_radius = 0.005;       ///< R2 [m]
+  double big_offset = 0.003;       ///< a1: S → M1 along +e3 [m]
+  double peg_offset = 0.016;       ///< a2: S → M2 along +e3 [m]
+  double gravity = 9.81;           ///< g [m/s²]
+  double mu = 0.3;                 ///< both contacts
+  double contact_radius = 5e-4;    ///< R [m]; R̄ = 3πR/16 (50)
+  double restitution = 0.0;        ///< ε
+  FrictionSet friction_set = FrictionSet::kSphere;
+};
+
+struct TippeTopInitialConditions {
+  double inclination = 0.1;  ///< θ0 [rad], tilt of e3 about the world x axis
+  double spin = 180.0;       ///< ω about the tilted e3 [rad/s]
+};
+
+/// R̄ = 3πR/16, eq. (50).
+constexpr double AverageFrictionRadius(double contact_radius) {
+  return 3.0 * 3.14159265358979323846 * contact_radius / 16.0;
+}
+
+/// Body "tippe_top", spheres "big_sphere" (index 0) and "peg_sphere" (index 1); the big sphere
+/// just touches the floor: z_S0 = R1 - a1 cos θ0.
+Scene MakeTippeTopScene(const TippeTopParameters& parameters = {},
+                        const TippeTopInitialConditions& initial = {});
+
+/// The state for the given initial conditions (centre of mass at rest, big sphere touching).
+BodyState TippeTopInitialState(const TippeTopParameters& parameters,
+                               const TippeTopInitialConditions& initial);
+
+}  // namespace nonsmooth_sim
+
+#endif  // NONSMOOTH_SIM_CORE_TIPPE_TOP_H_
