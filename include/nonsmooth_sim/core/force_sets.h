@@ -12,7 +12,9 @@
 //  - Friction sets are parametrised by `radius` = μ Λ_N ≥ 0 [N s] (the current normal
 //    percussion times the friction coefficient). At radius = 0 the set is the point {0}.
 //  - 3-D friction vectors are (Λ_T1, Λ_T2, Λ_τ): two tangential percussions [N s] and the
-//    drilling percussion [N m s]. `rbar` = R̄ = 3πR/16 (50) is the average friction radius [m], > 0.
+//    drilling percussion [N m s]. `rbar` = R̄ = 3πR/16 (50) is the average friction radius [m];
+//    rbar ≤ 0 degenerates every 3-D set to the flat disk ||Λ_T|| ≤ radius, Λ_τ = 0.
+//  - The prox functions never throw: radius ≤ 0 or NaN gives the apex.
 #ifndef NONSMOOTH_SIM_CORE_FORCE_SETS_H_
 #define NONSMOOTH_SIM_CORE_FORCE_SETS_H_
 
