@@ -7,22 +7,61 @@
 //
 // with the Delassus blocks G_ij = W_iᵀ M⁻¹ W_j and c_i of (16). D_i is the product of the
 // unilateral normal set and the friction set of the contact's law, scaled by the current iterate
-// of Λ_N (the usual fixed point for Coulomb friction).
+// of Λ_N (the usual fixed point for Coulomb friction): within one contact update Λ_N is projected
+// first and the friction set gets the radius μ·Λ_N^{ν+1}.
 //
-// Iterations (all on percussions written with C = -D, see force_sets.h):
-//  - kJacobi: projected Jacobi. On the original sets (37) for coulomb, cylinder, ellipsoid and
-//    exact; on the transformed sets (42)-(43) with Λ̂ = A⁻¹Λ, Ĝ = AᵀGA, ĉ = Aᵀc (41),
-//    A = diag(1, 1, 1, R̄) (56), for sphere; r_i = α / max_k G_iikk (43).
-//  - kModifiedJacobi: (46): in the non-projecting case each component gets its own step
-//    α / G_iikk, in the projecting case the step of (43).
-//  - kGaussSeidel: the same equations as kModifiedJacobi, contact by contact, each contact using
-//    the already updated percussions of the contacts before it.
+// Sign convention: the sets are written for Λ (C = -D, see force_sets.h), so -ξ_i ∈ N_{C_i}(Λ_i)
+// and (37) reads Λ^{ν+1} = prox_C(Λ^ν - r (GΛ^ν + c)).
 //
-// Stopping rule (per iteration ν, over all components k of all contacts):
+// Every contact is iterated in the coordinates Λ̂_i = A_i⁻¹Λ_i with Ĝ_ij = A_iᵀ G_ij A_j and
+// ĉ_i = A_iᵀ c_i (41) (transformation.h): A_i = diag(1, 1, 1, R̄) (56) for the `sphere` law, whose
+// friction set is then the ball S_F = A⁻¹E_F (57)-(59); A_i = I for all other laws, which are
+// iterated on their original sets (37). The result is mapped back, Λ_i = A_iΛ̂_i (47).
+//
+// Iterations (r̂_i, Ĝ, ĉ as above; for A_i = I the hats drop and (43) is (37)):
+//  - kJacobi, (37)/(43): Λ̂_i^{ν+1} = prox_{Ĉ_i}(Λ̂_i^ν - r̂_i ξ̂_i^ν),  ξ̂_i^ν = Σ_j Ĝ_ij Λ̂_j^ν + ĉ_i,
+//    one r̂_i = α / max_k Ĝ_iikk over all components k of contact i, normal included.
+//  - kModifiedJacobi, (46). The contact is split into its two factor sets, each with its own
+//    "projecting" flag:
+//      normal block {Λ_N ≥ 0} (a half-line, 1-D): (46) on a 1-D block has r̂ = α/Ĝ_NN and Q = 1
+//        in both cases, so  Λ_N^{ν+1} = max(0, Λ_N^ν - (α/Ĝ_NN) ξ̂_N);  projecting ⇔ the
+//        argument is < 0. Λ_N never leaves its set.
+//      friction block F (T1, T2[, τ]) with radius μΛ_N^{ν+1}: r̂_F = α / max_{k∈F} Ĝ_iikk,
+//        z = Λ̂_F^ν - r̂_F ξ̂_F;  non-projecting (44) ⇔ z ∈ Ĉ_F (prox region kInterior):
+//          y = Λ̂_F^ν - Q r̂_F ξ̂_F,  Q = diag(α / (r̂_F Ĝ_iikk)),  i.e. each component k steps
+//          α/Ĝ_iikk (the Jacobi step of (45) without the max);  Λ̂_F^{ν+1} = y if y ∈ Ĉ_F,
+//          otherwise Q = I:  Λ̂_F^{ν+1} = z  (the step of (43));
+//        projecting (Q = I):  Λ̂_F^{ν+1} = prox_{Ĉ_F}(z).
+//    Departure from the paper: (46) takes y whenever z ∈ Ĉ_F. Because the steps α/Ĝ_kk can be
+//    far larger than r̂_F (Ĝ_ττ = R̄²G_ττ is tiny for sphere), y can land far outside the set, the
+//    next iteration projects back, and the iteration 2-cycles on a sliding contact (seen on a
+//    single sphere-law contact of test ConstructedProblems). Accepting y only inside the set
+//    keeps every friction iterate in its set and leaves the fixed points unchanged (Q is
+//    regular in either case).
+//    The fixed point is that of (43) because a block-diagonal R̂_i = diag(1/r̂_N, I/r̂_F) in
+//    (39) has the same solutions as R̂_i = I/r̂_i (the sets are a product for a fixed Λ_N).
+//  - kGaussSeidel: the equations of kModifiedJacobi, contact by contact, each contact using the
+//    already updated percussions of the contacts before it (within a contact all components use
+//    the same ξ̂_i).
+//
+// Convergence (the non-projecting, linear case; D̂ = diag(Ĝ), λ_max of the scaled matrices):
+// kModifiedJacobi needs α < 2/λ_max(D̂^{-1/2} Ĝ D̂^{-1/2}) over the whole problem (sufficient for
+// kJacobi too, whose steps are smaller); kGaussSeidel only α < 2/λ_max(D̂_i^{-1/2} Ĝ_ii D̂_i^{-1/2})
+// for every contact (its splitting has M + Mᵀ - Ĝ = 2D̂/α - blockdiag(Ĝ_ii)). The diagonal map A
+// does not change these numbers. Tippe-Top: one contact ≈ 1.2, so α = 1 is fine for every scheme;
+// both spheres touching ≈ 2.65, so the Jacobi schemes need α < 0.75 there unless the contacts
+// slide (bench/fixpoint_bench.cpp's rolling two-contact problem does not converge with α = 1);
+// Gauss-Seidel does not.
+//
+// Stopping rule (per iteration ν, over all components k of all contacts, in the original
+// coordinates Λ = AΛ̂):
 //   converged  ⇔  |Λ_k^{ν+1} - Λ_k^ν| ≤ tolerance_abs + tolerance_rel · |Λ_k^{ν+1}|  for all k.
 // The reported residual is max_k |Λ_k^{ν+1} - Λ_k^ν| / (tolerance_abs + tolerance_rel·|Λ_k^{ν+1}|)
-// (≤ 1 means converged). Non-convergence is data: the solver returns after max_iterations with
-// converged = false and never throws for it.
+// of the last iteration (≤ 1 means converged; a term with a zero bound counts 0 if its change is 0
+// and +inf otherwise). Non-convergence is data: the solver returns after max_iterations with
+// converged = false and never throws for it. If an iterate stops being finite (a divergent
+// Jacobi iteration, e.g. α too large for strongly coupled contacts), the solver stops and returns
+// the last finite iterate with converged = false and residual = max_change = +inf.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 #define NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 
@@ -44,8 +83,8 @@ struct ContactLaw {
   FrictionSet friction_set = FrictionSet::kSphere;
 };
 
-/// Number of percussion components a contact with this law has: 1 (frictionless), 3 (normal and
-/// two tangential: coulomb, or R̄ = 0) or 4 (with the drilling component).
+/// Number of percussion components a contact with this law has: 1 (frictionless, μ = 0), 3 (normal
+/// and two tangential: coulomb, or R̄ = 0) or 4 (with the drilling component).
 int ContactDimension(const ContactLaw& law);
 
 /// Solver iteration scheme.
@@ -55,10 +94,14 @@ std::string_view SolverTypeName(SolverType type);
 std::optional<SolverType> SolverTypeFromName(std::string_view name);
 std::string SolverTypeNameList();
 
+/// Defaults (chosen on the Tippe-Top at Δt = 1e-4, warm-started by the Simulator): Gauss-Seidel
+/// converges where the Jacobi schemes need α < 1 (two or more coupled contacts in stick, e.g. a
+/// block on four feet), and tolerance_rel = 1e-5 reproduces every event time of a 1e-12 run to the
+/// step (θ after 8 s within 3e-7 rad) at 3.7 iterations per step.
 struct SolverOptions {
-  SolverType type = SolverType::kModifiedJacobi;
-  double tolerance_rel = 1e-8;  ///< relative tolerance on the change of Λ, ≥ 0
-  double tolerance_abs = 1e-14; ///< absolute tolerance on the change of Λ [N s], ≥ 0
+  SolverType type = SolverType::kGaussSeidel;
+  double tolerance_rel = 1e-5;  ///< relative tolerance on the change of Λ, finite, ≥ 0
+  double tolerance_abs = 1e-14; ///< absolute tolerance on the change of Λ [N s], finite, ≥ 0
   int max_iterations = 1000;    ///< ≥ 1
   double relaxation = 1.0;      ///< α of (43), in (0, 2)
 };
@@ -73,35 +116,78 @@ struct ContactBlock {
 };
 
 /// The inclusion (17) for the closed contacts of one step. Components of contact i occupy
-/// [offset_i, offset_i + dim_i) in order (N, T1, T2, τ).
+/// [offset_i, offset_i + dim_i) in order (N, T1, T2, τ); the contacts are stored in order and
+/// without gaps (offset_0 = 0, offset_{i+1} = offset_i + dim_i, n = Σ dim_i).
 struct ContactProblem {
   Eigen::MatrixXd G;  ///< Delassus matrix, symmetric positive semi-definite, n × n
   Eigen::VectorXd c;  ///< n
   std::vector<ContactBlock> contacts;
 };
 
+/// Throws std::invalid_argument unless: the contacts are laid out as ContactProblem says, G is
+/// n × n and c has n entries, every entry is finite, every diagonal entry of G is > 0 (a zero
+/// diagonal means a force direction that moves nothing), and every law has finite μ ≥ 0 and
+/// R̄ ≥ 0. Cost O(n²); no allocation. Symmetry and semi-definiteness are not checked.
+void ValidateContactProblem(const ContactProblem& problem);
+
 struct SolverStatistics {
   int iterations = 0;
   double residual = 0.0;  ///< see the stopping rule above; ≤ 1 when converged
+  /// max_k |Λ_k^{ν+1} - Λ_k^ν| of the last iteration [N s or N m s]; +inf only if it diverged.
+  double max_change = 0.0;
   bool converged = false;
   /// Per contact: whether the last iteration projected its friction components (sliding) and its
-  /// normal component (separating, Λ_N clamped to 0).
+  /// normal component (separating, Λ_N clamped to 0). Frictionless contacts: friction false.
   std::vector<bool> friction_projected;
   std::vector<bool> normal_projected;
 };
+
+namespace internal {
+/// Per-contact data of ContactSolver's iteration, derived once per Solve from the problem and the
+/// options, plus the contact's projection flags of the last iteration. Not part of the API.
+struct ContactWork {
+  Eigen::Vector4d scale = Eigen::Vector4d::Ones();  ///< diagonal of A_i (56), (N, T1, T2, τ)
+  Eigen::Vector4d step = Eigen::Vector4d::Zero();   ///< α / Ĝ_iikk (46); 0 where absent
+  Eigen::Vector4d tolerance_abs_hat = Eigen::Vector4d::Zero();  ///< tolerance_abs / diag(A_i)
+  double r_contact = 0.0;   ///< r̂_i of (43): α / max_k Ĝ_iikk over the whole contact
+  double r_normal = 0.0;    ///< α / Ĝ_iiNN: (46) on the normal block
+  double r_friction = 0.0;  ///< α / max_{k∈F} Ĝ_iikk: (46) on the friction block
+  double mu = 0.0;
+  double rbar = 0.0;
+  int offset = 0;
+  int dim = 1;
+  FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
+  bool normal_projected = false;
+  bool friction_projected = false;
+};
+}  // namespace internal
 
 /// Solves (17). `lambda` holds the warm start on entry (size n; zeros if unknown) and the
 /// solution on return. Allocates only when the problem grows beyond what an earlier call saw:
 /// keep one ContactSolver per simulation.
 class ContactSolver {
  public:
+  /// Throws std::invalid_argument for invalid options (ValidateSolverOptions), an invalid problem
+  /// (ValidateContactProblem), a null `lambda`, or a warm start of the wrong size or not finite.
   SolverStatistics Solve(const ContactProblem& problem, const SolverOptions& options,
                          Eigen::VectorXd* lambda);
+  /// The same, filling `statistics` in place: with a statistics object reused across calls this
+  /// overload does not allocate at all once the sizes have been seen.
+  void Solve(const ContactProblem& problem, const SolverOptions& options, Eigen::VectorXd* lambda,
+             SolverStatistics* statistics);
 
  private:
-  // workspace reused across calls (transformed Ĝ, ĉ, iterates)
-  Eigen::MatrixXd g_hat_;
-  Eigen::VectorXd c_hat_, lambda_hat_, lambda_next_, a_diag_;
+  template <SolverType kType>
+  void Iterate(const SolverOptions& options, SolverStatistics* statistics);
+  void Prepare(const ContactProblem& problem, const SolverOptions& options,
+               const Eigen::VectorXd& lambda);
+
+  // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
+  // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last change |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact
+  // (std::vector suffices for the fixed-size Eigen types: C++17 honours their alignment)
+  std::vector<internal::ContactWork> work_;
+  std::vector<Eigen::Matrix4d> g_hat_;
+  std::vector<Eigen::Vector4d> c_hat_, lambda_hat_, lambda_next_, change_;
 };
 
 }  // namespace nonsmooth_sim

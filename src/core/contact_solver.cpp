@@ -1,0 +1,371 @@
+// The fixed-point iterations (37), (43), (46) and projected Gauss-Seidel for the inclusion (17).
+// The equations and the exact treatment of (46) and of the normal component are in
+// contact_solver.h.
+#include "nonsmooth_sim/core/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "nonsmooth_sim/core/transformation.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+using internal::ContactWork;
+
+std::string Describe(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+bool IsFiniteNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
+
+[[noreturn]] void ThrowNotFiniteNonNegative(const std::string& field, const char* unit,
+                                            double value) {
+  throw std::invalid_argument(field + ": must be finite and >= 0" + unit + ", got " +
+                              Describe(value));
+}
+
+bool IsKnown(FrictionSet set) { return FrictionSetName(set) != "unknown"; }
+bool IsKnown(SolverType type) { return SolverTypeName(type) != "unknown"; }
+
+// Euclidean prox onto the 3-D friction set (T1, T2, τ) of a 4-component contact, in the
+// coordinates the contact is iterated in (Λ̂ for sphere, Λ otherwise).
+Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, double rbar) {
+  switch (set) {
+    case FrictionSet::kCylinder: return ProxCylinder(z, radius, rbar);        // C_F (54)
+    case FrictionSet::kEllipsoid: return ProxEllipsoid(z, radius, rbar);      // E_F (55), (37)
+    case FrictionSet::kSphere: return ProxBall(z, radius);                    // S_F (57)-(59), (43)
+    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, rbar);   // B_F (51)-(53)
+    case FrictionSet::kCoulomb: break;  // 3-component contacts use the disk, see UpdateContact
+  }
+  const Prox2 disk = ProxDisk(z.head<2>(), radius);
+  return {Eigen::Vector3d(disk.point.x(), disk.point.y(), 0.0), disk.region};
+}
+
+struct ContactUpdate {
+  Eigen::Vector4d next;  // Λ̂_i^{ν+1}, zero where the contact has no component
+  bool normal_projected;
+  bool friction_projected;
+};
+
+// Friction block of one contact: z = Λ̂_F^ν - r ξ̂_F, then (43) or (46). `Vector` is the block's
+// fixed-size vector type and `prox` its Euclidean projection for the radius μΛ_N^{ν+1}.
+template <bool kModified, typename Vector, typename Prox>
+Vector UpdateFriction(const Vector& lambda, const Vector& xi, const Vector& step, double r,
+                      const Prox& prox, bool* projected) {
+  const Vector z = lambda - r * xi;
+  const auto p = prox(z);
+  *projected = p.region != ProxRegion::kInterior;
+  if (kModified && !*projected) {
+    // (46), non-projecting case (44): Q = diag(α / (r̂ Ĝ_kk)), i.e. Λ̂_k - (α / Ĝ_kk) ξ̂_k,
+    // accepted only if it stays in the set; otherwise Q = I, which here is the step z of (43)
+    const Vector jacobi = lambda - step.cwiseProduct(xi);
+    if (prox(jacobi).region == ProxRegion::kInterior) return jacobi;
+  }
+  // (37), (43); (46) with Q = I
+  return p.point;
+}
+
+// One contact: Λ̂_i^{ν+1} from Λ̂_i^ν and ξ̂_i = Σ_j Ĝ_ij Λ̂_j + ĉ_i.
+template <bool kModified>
+ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
+                            const Eigen::Vector4d& xi) {
+  ContactUpdate update{Eigen::Vector4d::Zero(), false, false};
+  // normal block {Λ_N ≥ 0}: (43) with r̂_i; (46) on the 1-D block has r̂ = α/Ĝ_NN and Q = 1
+  const double r_normal = kModified ? w.r_normal : w.r_contact;
+  const Prox1 normal = ProxNonNegative(lambda[0] - r_normal * xi[0]);
+  update.next[0] = normal.point;
+  update.normal_projected = normal.region != ProxRegion::kInterior;
+  if (w.dim == 1) return update;
+
+  // friction block, scaled by the new normal percussion: radius μΛ_N^{ν+1}
+  const double radius = w.mu * normal.point;
+  const double r = kModified ? w.r_friction : w.r_contact;
+  if (w.dim == 3) {
+    // planar Coulomb disk ||Λ_T|| ≤ μΛ_N
+    const auto disk = [radius](const Eigen::Vector2d& z) { return ProxDisk(z, radius); };
+    update.next.segment<2>(1) = UpdateFriction<kModified, Eigen::Vector2d>(
+        lambda.segment<2>(1), xi.segment<2>(1), w.step.segment<2>(1), r, disk,
+        &update.friction_projected);
+    return update;
+  }
+  // (T1, T2, τ) on the law's set (original coordinates, or Λ̂ on S_F for sphere)
+  const auto set = [&w, radius](const Eigen::Vector3d& z) {
+    return ProxFriction(w.set, z, radius, w.rbar);
+  };
+  update.next.tail<3>() = UpdateFriction<kModified, Eigen::Vector3d>(
+      lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected);
+  return update;
+}
+
+// max over components of |ΔΛ_k| / (tolerance_abs + tolerance_rel |Λ_k|), 0/0 = 0, x/0 = +inf
+double ResidualTerm(const Eigen::Vector4d& change, const Eigen::Vector4d& lambda,
+                    const SolverOptions& options) {
+  double residual = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double bound = options.tolerance_abs + options.tolerance_rel * std::abs(lambda[k]);
+    if (change[k] == 0.0) continue;
+    residual = std::max(residual, bound > 0.0 ? change[k] / bound
+                                              : std::numeric_limits<double>::infinity());
+  }
+  return residual;
+}
+
+}  // namespace
+
+int ContactDimension(const ContactLaw& law) {
+  if (!(law.mu > 0.0)) return 1;
+  if (law.friction_set == FrictionSet::kCoulomb || !(law.rbar > 0.0)) return 3;
+  return 4;
+}
+
+void ValidateSolverOptions(const SolverOptions& options) {
+  if (!IsKnown(options.type)) {
+    throw std::invalid_argument("SolverOptions.type: must be one of " + SolverTypeNameList());
+  }
+  if (!IsFiniteNonNegative(options.tolerance_rel)) {
+    ThrowNotFiniteNonNegative("SolverOptions.tolerance_rel", "", options.tolerance_rel);
+  }
+  if (!IsFiniteNonNegative(options.tolerance_abs)) {
+    ThrowNotFiniteNonNegative("SolverOptions.tolerance_abs", " [N s]", options.tolerance_abs);
+  }
+  if (options.max_iterations < 1) {
+    throw std::invalid_argument("SolverOptions.max_iterations: must be >= 1, got " +
+                                std::to_string(options.max_iterations));
+  }
+  if (!(options.relaxation > 0.0 && options.relaxation < 2.0)) {
+    throw std::invalid_argument(
+        "SolverOptions.relaxation (alpha of (43)): must be in the open interval (0, 2), got " +
+        Describe(options.relaxation));
+  }
+}
+
+void ValidateContactProblem(const ContactProblem& problem) {
+  const Eigen::Index n = problem.c.size();
+  if (problem.G.rows() != n || problem.G.cols() != n) {
+    throw std::invalid_argument("ContactProblem.G: must be n x n with n = size of c = " +
+                                std::to_string(n) + ", got " + std::to_string(problem.G.rows()) +
+                                " x " + std::to_string(problem.G.cols()));
+  }
+  Eigen::Index offset = 0;
+  for (std::size_t i = 0; i < problem.contacts.size(); ++i) {
+    const ContactBlock& contact = problem.contacts[i];
+    // the message is only built on failure: validation must not allocate
+    const auto name = [i] { return "ContactProblem.contacts[" + std::to_string(i) + "]"; };
+    const ContactLaw& law = contact.law;
+    if (!IsFiniteNonNegative(law.mu)) ThrowNotFiniteNonNegative(name() + ".law.mu", "", law.mu);
+    if (!IsFiniteNonNegative(law.rbar)) {
+      ThrowNotFiniteNonNegative(name() + ".law.rbar", " [m]", law.rbar);
+    }
+    if (!IsKnown(law.friction_set)) {
+      throw std::invalid_argument(name() + ".law.friction_set: must be one of " +
+                                  FrictionSetNameList());
+    }
+    if (contact.offset != offset) {
+      throw std::invalid_argument(name() + ".offset: must be " + std::to_string(offset) +
+                                  " (contacts in order, without gaps), got " +
+                                  std::to_string(contact.offset));
+    }
+    offset += ContactDimension(law);
+  }
+  if (offset != n) {
+    throw std::invalid_argument("ContactProblem.c: size must be the sum of the contact dimensions " +
+                                std::to_string(offset) + ", got " + std::to_string(n));
+  }
+  if (!problem.G.allFinite()) throw std::invalid_argument("ContactProblem.G: must be finite");
+  if (!problem.c.allFinite()) throw std::invalid_argument("ContactProblem.c: must be finite");
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (!(problem.G(k, k) > 0.0)) {
+      throw std::invalid_argument("ContactProblem.G: diagonal entries must be > 0, G(" +
+                                  std::to_string(k) + ", " + std::to_string(k) + ") = " +
+                                  Describe(problem.G(k, k)));
+    }
+  }
+}
+
+SolverStatistics ContactSolver::Solve(const ContactProblem& problem, const SolverOptions& options,
+                                      Eigen::VectorXd* lambda) {
+  SolverStatistics statistics;
+  Solve(problem, options, lambda, &statistics);
+  return statistics;
+}
+
+void ContactSolver::Solve(const ContactProblem& problem, const SolverOptions& options,
+                          Eigen::VectorXd* lambda, SolverStatistics* statistics) {
+  ValidateSolverOptions(options);
+  ValidateContactProblem(problem);
+  if (lambda == nullptr) throw std::invalid_argument("lambda: must not be null");
+  if (statistics == nullptr) throw std::invalid_argument("statistics: must not be null");
+  if (lambda->size() != problem.c.size()) {
+    throw std::invalid_argument("lambda (warm start): size must be n = " +
+                                std::to_string(problem.c.size()) + ", got " +
+                                std::to_string(lambda->size()));
+  }
+  if (!lambda->allFinite()) throw std::invalid_argument("lambda (warm start): must be finite");
+
+  const std::size_t m = problem.contacts.size();
+  statistics->friction_projected.assign(m, false);
+  statistics->normal_projected.assign(m, false);
+  statistics->iterations = 0;
+  statistics->residual = 0.0;
+  statistics->max_change = 0.0;
+  statistics->converged = true;
+  if (m == 0) return;
+
+  Prepare(problem, options, *lambda);
+  switch (options.type) {
+    case SolverType::kJacobi: Iterate<SolverType::kJacobi>(options, statistics); break;
+    case SolverType::kModifiedJacobi:
+      Iterate<SolverType::kModifiedJacobi>(options, statistics);
+      break;
+    case SolverType::kGaussSeidel: Iterate<SolverType::kGaussSeidel>(options, statistics); break;
+  }
+
+  for (std::size_t i = 0; i < m; ++i) {
+    const ContactWork& w = work_[i];
+    // Λ_i = A_iΛ̂_i (47)
+    for (int k = 0; k < w.dim; ++k) (*lambda)[w.offset + k] = w.scale[k] * lambda_hat_[i][k];
+    statistics->normal_projected[i] = w.normal_projected;
+    statistics->friction_projected[i] = w.friction_projected;
+  }
+}
+
+void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& options,
+                            const Eigen::VectorXd& lambda) {
+  const std::size_t m = problem.contacts.size();
+  work_.resize(m);
+  g_hat_.resize(m * m);
+  c_hat_.resize(m);
+  lambda_hat_.resize(m);
+  lambda_next_.resize(m);
+  change_.resize(m);
+
+  for (std::size_t i = 0; i < m; ++i) {
+    const ContactLaw& law = problem.contacts[i].law;
+    ContactWork& w = work_[i];
+    w.offset = problem.contacts[i].offset;
+    w.dim = ContactDimension(law);
+    w.mu = law.mu;
+    w.rbar = law.rbar;
+    // with R̄ = 0 every law degenerates to the coulomb disk
+    w.set = w.dim == 4 ? law.friction_set : FrictionSet::kCoulomb;
+    w.scale = ContactMapDiagonal(law);
+    w.normal_projected = false;
+    w.friction_projected = false;
+    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), padded with zeros (scalar loops: dim ≤ 4)
+    c_hat_[i].setZero();
+    lambda_hat_[i].setZero();
+    for (int k = 0; k < w.dim; ++k) {
+      c_hat_[i][k] = w.scale[k] * problem.c[w.offset + k];
+      lambda_hat_[i][k] = lambda[w.offset + k] / w.scale[k];
+    }
+    change_[i].setZero();
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const ContactWork& wi = work_[i];
+    for (std::size_t j = 0; j < m; ++j) {
+      const ContactWork& wj = work_[j];
+      // G_ij padded with zeros, then Ĝ_ij = A_iᵀ G_ij A_j (41)
+      Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+      for (int k = 0; k < wj.dim; ++k) {
+        for (int l = 0; l < wi.dim; ++l) block(l, k) = problem.G(wi.offset + l, wj.offset + k);
+      }
+      g_hat_[i * m + j] = TransformBlock(block, wi.scale, wj.scale);
+    }
+  }
+  const double alpha = options.relaxation;
+  for (std::size_t i = 0; i < m; ++i) {
+    ContactWork& w = work_[i];
+    const Eigen::Vector4d diagonal = g_hat_[i * m + i].diagonal();
+    double max_friction = 0.0;
+    w.step.setZero();
+    for (int k = 0; k < w.dim; ++k) {
+      if (k > 0) max_friction = std::max(max_friction, diagonal[k]);
+      // (46), non-projecting: component k steps α / Ĝ_iikk
+      w.step[k] = alpha / diagonal[k];
+    }
+    // the absolute tolerance in Λ̂ coordinates
+    w.tolerance_abs_hat = options.tolerance_abs * w.scale.cwiseInverse();
+    // r̂_i = α / max_k Ĝ_iikk (43)
+    w.r_contact = alpha / std::max(diagonal[0], max_friction);
+    // (46) per block: normal {Λ_N ≥ 0} and friction F, each with its own r̂
+    w.r_normal = alpha / diagonal[0];
+    w.r_friction = w.dim > 1 ? alpha / max_friction : 0.0;
+  }
+}
+
+template <SolverType kType>
+void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* statistics) {
+  constexpr bool kModified = kType != SolverType::kJacobi;
+  constexpr bool kGaussSeidel = kType == SolverType::kGaussSeidel;
+  const std::size_t m = work_.size();
+  const double tolerance_rel = options.tolerance_rel;
+
+  // raw pointers into the workspace: the iterates swap roles every iteration
+  ContactWork* const work = work_.data();
+  const Eigen::Matrix4d* const g_hat = g_hat_.data();
+  const Eigen::Vector4d* const c_hat = c_hat_.data();
+  Eigen::Vector4d* const last_change = change_.data();
+  Eigen::Vector4d* current = lambda_hat_.data();
+  Eigen::Vector4d* next = lambda_next_.data();
+
+  bool converged = false;
+  bool finite = true;
+  int iteration = 0;
+  while (iteration < options.max_iterations && !converged && finite) {
+    ++iteration;
+    converged = true;
+    for (std::size_t i = 0; i < m; ++i) {
+      ContactWork& w = work[i];
+      // ξ̂_i = Σ_j Ĝ_ij Λ̂_j + ĉ_i (41); Gauss-Seidel takes this sweep's Λ̂_j for j < i
+      const Eigen::Matrix4d* g_row = g_hat + i * m;
+      Eigen::Vector4d xi = c_hat[i];
+      for (std::size_t j = 0; j < m; ++j) {
+        xi.noalias() += g_row[j] * ((kGaussSeidel && j < i) ? next[j] : current[j]);
+      }
+      const ContactUpdate update = UpdateContact<kModified>(w, current[i], xi);
+      next[i] = update.next;
+      w.normal_projected = update.normal_projected;
+      w.friction_projected = update.friction_projected;
+      // stopping rule, evaluated in Λ̂: a_k|ΔΛ̂_k| ≤ tol_abs + tol_rel a_k|Λ̂_k| with a = diag(A_i)
+      const Eigen::Array4d delta = (update.next - current[i]).array().abs();
+      converged = converged && (delta <= tolerance_rel * update.next.array().abs() +
+                                             w.tolerance_abs_hat.array())
+                                   .all();
+      last_change[i] = delta.matrix();
+    }
+    // keep the last finite iterate if the iteration diverged (NaN fails the test above)
+    if (!converged) {
+      for (std::size_t i = 0; i < m; ++i) finite = finite && next[i].allFinite();
+    }
+    if (finite) std::swap(current, next);
+  }
+  if (current != lambda_hat_.data()) lambda_hat_.swap(lambda_next_);
+
+  statistics->iterations = iteration;
+  statistics->converged = converged && finite;
+  if (!finite) {
+    statistics->residual = std::numeric_limits<double>::infinity();
+    statistics->max_change = std::numeric_limits<double>::infinity();
+    return;
+  }
+  double residual = 0.0;
+  double max_change = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    // back to the original coordinates Λ = AΛ̂ (47)
+    const Eigen::Vector4d lambda = work_[i].scale.cwiseProduct(lambda_hat_[i]);
+    const Eigen::Vector4d change = work_[i].scale.cwiseProduct(change_[i]);
+    residual = std::max(residual, ResidualTerm(change, lambda, options));
+    max_change = std::max(max_change, change.maxCoeff());
+  }
+  statistics->residual = residual;
+  statistics->max_change = max_change;
+}
+
+}  // namespace nonsmooth_sim

@@ -1,0 +1,233 @@
+// Parsing and range checks of the `simulate` command line. Every bad value is reported with the
+// option, the value and what is allowed, before anything runs or is written.
+#include "cli.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace nonsmooth_sim::simulate {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMinTimeStep = 1e-7;   // [s], as ValidateSimulatorOptions
+constexpr double kMaxTimeStep = 1e-2;   // [s]
+constexpr double kMaxDuration = 1e5;    // [s], keeps the step count far inside a long
+constexpr long kMaxIterationsLimit = std::numeric_limits<int>::max();
+
+struct Error {
+  std::string message;
+};
+
+Error BadValue(const std::string& option, const std::string& value, const std::string& allowed) {
+  return {"invalid value '" + value + "' for " + option + ": expected " + allowed};
+}
+
+// A finite number in [low, high] (open ends where the flags say so).
+double ParseNumber(const std::string& option, const std::string& value, double low, double high,
+                   bool low_open, bool high_open, const std::string& allowed) {
+  const char* begin = value.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(begin, &end);
+  const bool parsed = !value.empty() && end == begin + value.size() && errno == 0;
+  const bool in_range = std::isfinite(x) && (low_open ? x > low : x >= low) &&
+                        (high_open ? x < high : x <= high);
+  if (!parsed || !in_range) throw BadValue(option, value, allowed);
+  return x;
+}
+
+long ParseInteger(const std::string& option, const std::string& value, long low, long high,
+                  const std::string& allowed) {
+  const char* begin = value.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const long x = std::strtol(begin, &end, 10);
+  const bool parsed = !value.empty() && end == begin + value.size() && errno == 0;
+  if (!parsed || x < low || x > high) throw BadValue(option, value, allowed);
+  return x;
+}
+
+std::string ParsePath(const std::string& option, const std::string& value) {
+  if (value.empty()) throw BadValue(option, value, "a file path");
+  return value;
+}
+
+using Setter = std::function<void(RunConfig&, const std::string& option, const std::string&)>;
+
+const std::map<std::string, Setter>& ValueOptions() {
+  static const std::map<std::string, Setter> options = {
+      {"--friction-set",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         const auto set = FrictionSetFromName(v);
+         if (!set) throw BadValue(o, v, "one of " + FrictionSetNameList());
+         c.parameters.friction_set = *set;
+       }},
+      {"--solver",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         const auto type = SolverTypeFromName(v);
+         if (!type) throw BadValue(o, v, "one of " + SolverTypeNameList());
+         c.options.solver.type = *type;
+       }},
+      {"--gyroscopic",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         const auto scheme = GyroscopicSchemeFromName(v);
+         if (!scheme) throw BadValue(o, v, "one of explicit, implicit_midpoint");
+         c.options.gyroscopic = *scheme;
+       }},
+      {"--dt",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.options.time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
+                                           "a time step in [1e-07, 0.01] s");
+       }},
+      {"--duration",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.duration = ParseNumber(o, v, 0.0, kMaxDuration, true, false,
+                                  "a duration in (0, 100000] s");
+       }},
+      {"--tolerance",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.options.solver.tolerance_rel = ParseNumber(
+             o, v, 0.0, std::numeric_limits<double>::max(), false, false,
+             "a finite relative tolerance >= 0");
+       }},
+      {"--tolerance-abs",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.options.solver.tolerance_abs = ParseNumber(
+             o, v, 0.0, std::numeric_limits<double>::max(), false, false,
+             "a finite absolute tolerance >= 0 N s");
+       }},
+      {"--max-iterations",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.options.solver.max_iterations = static_cast<int>(
+             ParseInteger(o, v, 1, kMaxIterationsLimit, "an integer >= 1"));
+       }},
+      {"--relaxation",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.options.solver.relaxation =
+             ParseNumber(o, v, 0.0, 2.0, true, true, "a relaxation alpha in (0, 2)");
+       }},
+      {"--mu",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.parameters.mu = ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false,
+                                       false, "a finite friction coefficient >= 0");
+       }},
+      {"--contact-radius",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.parameters.contact_radius =
+             ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false, false,
+                         "a finite contact radius R >= 0 m");
+       }},
+      {"--inclination",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.initial.inclination =
+             ParseNumber(o, v, 0.0, kPi, false, false, "an angle in [0, 3.14159] rad");
+       }},
+      {"--spin",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.initial.spin = ParseNumber(o, v, -std::numeric_limits<double>::max(),
+                                      std::numeric_limits<double>::max(), false, false,
+                                      "a finite spin in rad/s");
+       }},
+      {"--csv",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.csv_path = ParsePath(o, v);
+       }},
+      {"--summary",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.summary_path = ParsePath(o, v);
+       }},
+      {"--decimate",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.decimate = ParseInteger(o, v, 1, std::numeric_limits<long>::max(), "an integer >= 1");
+       }},
+  };
+  return options;
+}
+
+}  // namespace
+
+std::string UsageText() {
+  std::ostringstream s;
+  s << "usage: simulate [options]\n"
+       "Runs the Tippe-Top (Leine & Glocker 2003 parameters) headless with Moreau's midpoint\n"
+       "time-stepping and writes a CSV time series and a JSON summary.\n\n"
+       "  --friction-set NAME   "
+    << FrictionSetNameList()
+    << " (default sphere)\n"
+       "  --solver NAME         "
+    << SolverTypeNameList()
+    << " (default "
+    << SolverTypeName(SolverOptions{}.type)
+    << ")\n"
+       "  --dt SECONDS          time step in [1e-7, 1e-2] (default 1e-4)\n"
+       "  --duration SECONDS    simulated time (default 8)\n"
+       "  --tolerance REL       solver relative tolerance on the change of the percussions"
+       " (default "
+    << SolverOptions{}.tolerance_rel
+    << ")\n"
+       "  --tolerance-abs ABS   solver absolute tolerance on the change [N s] (default "
+    << SolverOptions{}.tolerance_abs
+    << ")\n"
+       "  --max-iterations N    solver iteration cap per step (default "
+    << SolverOptions{}.max_iterations
+    << ")\n"
+       "  --relaxation ALPHA    alpha of (43), in (0, 2) (default 1)\n"
+       "  --mu MU               friction coefficient of both contacts (default 0.3)\n"
+       "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4)\n"
+       "  --inclination THETA   initial inclination [rad] in [0, pi] (default 0.1)\n"
+       "  --spin OMEGA          initial spin about the symmetry axis [rad/s] (default 180)\n"
+       "  --gyroscopic SCHEME   explicit (the paper's, default) or implicit_midpoint\n"
+       "  --csv FILE            time series: t, position, quaternion, theta, energy, Jellett,\n"
+       "                        vertical spin, per contact closed/percussions, iterations\n"
+       "  --summary FILE        JSON summary\n"
+       "  --decimate N          write every N-th step to the CSV (default 10)\n"
+       "  --quiet               no report on stdout, no progress bar\n"
+       "  --help                this text\n"
+       "Exit status: 0 ok, 1 an output file could not be written, 2 invalid command line.\n";
+  return s.str();
+}
+
+ParseResult ParseCommandLine(int argc, const char* const* argv) {
+  RunConfig config;
+  try {
+    for (int k = 1; k < argc; ++k) {
+      std::string arg = argv[k];
+      if (arg == "--help" || arg == "-h") return HelpRequest{};
+      if (arg == "--quiet") {
+        config.quiet = true;
+        continue;
+      }
+      std::string value;
+      bool has_value = false;
+      if (const auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
+        value = arg.substr(eq + 1);
+        arg = arg.substr(0, eq);
+        has_value = true;
+      }
+      const auto option = ValueOptions().find(arg);
+      if (option == ValueOptions().end()) {
+        throw Error{"unknown option '" + arg + "' (see --help)"};
+      }
+      if (!has_value) {
+        if (k + 1 >= argc) throw Error{"missing value for " + arg + " (see --help)"};
+        value = argv[++k];
+      }
+      option->second(config, arg, value);
+    }
+    if (std::llround(config.duration / config.options.time_step) < 1) {
+      throw Error{"--duration " + std::to_string(config.duration) +
+                  " is shorter than one time step --dt " +
+                  std::to_string(config.options.time_step)};
+    }
+  } catch (const Error& error) {
+    return UsageError{error.message};
+  }
+  return config;
+}
+
+}  // namespace nonsmooth_sim::simulate

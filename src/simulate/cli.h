@@ -1,0 +1,37 @@
+// Command line of the headless `simulate` executable: the Tippe-Top with chosen friction set,
+// solver, time step, tolerances and initial conditions.
+#ifndef NONSMOOTH_SIM_SIMULATE_CLI_H_
+#define NONSMOOTH_SIM_SIMULATE_CLI_H_
+
+#include <string>
+#include <variant>
+
+#include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/core/tippe_top.h"
+
+namespace nonsmooth_sim::simulate {
+
+struct RunConfig {
+  TippeTopParameters parameters;     ///< friction set, μ, R
+  TippeTopInitialConditions initial; ///< θ0, spin
+  SimulatorOptions options;          ///< Δt, solver, gyroscopic scheme
+  double duration = 8.0;             ///< [s], > 0
+  std::string csv_path;              ///< empty: no CSV
+  std::string summary_path;          ///< empty: no JSON summary
+  long decimate = 10;                ///< CSV row every N steps, ≥ 1
+  bool quiet = false;                ///< no stdout report, no progress bar
+};
+
+/// What the command line asks for: a run, the help text, or an error message (exit code 2).
+struct HelpRequest {};
+struct UsageError {
+  std::string message;
+};
+using ParseResult = std::variant<RunConfig, HelpRequest, UsageError>;
+
+ParseResult ParseCommandLine(int argc, const char* const* argv);
+std::string UsageText();
+
+}  // namespace nonsmooth_sim::simulate
+
+#endif  // NONSMOOTH_SIM_SIMULATE_CLI_H_

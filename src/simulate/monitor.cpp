@@ -1,0 +1,161 @@
+// Per-step monitors and the decimated CSV of `simulate`.
+#include "monitor.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace nonsmooth_sim::simulate {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Inclination thresholds of the summary [rad]: horizontal, peg touchdown (both spheres touch at
+// θ* ≈ 2.449), inverted.
+constexpr double kThetaHorizontal = 0.5 * kPi;
+constexpr double kThetaPegTouchdown = 2.4;
+constexpr double kThetaInverted = 2.9;
+constexpr int kSignificantDigits = 15;  // of the CSV numbers
+
+// cos θ = e3·ẑ = 1 - 2(x² + y²) of a unit quaternion: threshold tests without acos
+double CosInclination(const Eigen::Quaterniond& p) {
+  return 1.0 - 2.0 * (p.x() * p.x() + p.y() * p.y());
+}
+
+void SetOnce(std::optional<double>* time, double t) {
+  if (!*time) *time = t;
+}
+
+}  // namespace
+
+double VerticalSpin(const BodyState& state) {
+  return (state.orientation * state.angular_velocity).z();
+}
+
+RunMonitor::RunMonitor(const RunConfig& config, const Simulator& simulator)
+    : time_step_(simulator.options().time_step) {
+  summary_.config = config;
+  const BodyState& s = simulator.state()[0];
+  summary_.energy_initial = simulator.Energy();
+  summary_.jellett_initial = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  summary_.vertical_spin_initial = VerticalSpin(s);
+  min_cos_theta_ = std::cos(Inclination(s));
+  summary_.min_gap = std::numeric_limits<double>::infinity();
+  summary_.max_energy_increase = -std::numeric_limits<double>::infinity();
+  energy_previous_ = summary_.energy_initial;
+}
+
+void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatistics& stats) {
+  const double t = static_cast<double>(step) * time_step_;
+  const BodyState& s = simulator.state()[0];
+  const auto& contacts = simulator.contacts();
+
+  // energy: largest increase over one step and over the start
+  const double energy = simulator.Energy();
+  if (energy - energy_previous_ > summary_.max_energy_increase) {
+    summary_.max_energy_increase = energy - energy_previous_;
+    summary_.max_energy_increase_time = t;
+  }
+  summary_.max_energy_above_initial =
+      std::max(summary_.max_energy_above_initial, energy - summary_.energy_initial);
+  energy_previous_ = energy;
+
+  // inclination thresholds, tested on cos θ
+  const double cos_theta = CosInclination(s.orientation);
+  if (cos_theta < std::cos(kThetaHorizontal)) SetOnce(&summary_.t_theta_above_pi_2, t);
+  if (cos_theta < std::cos(kThetaPegTouchdown)) SetOnce(&summary_.t_theta_above_2_4, t);
+  if (cos_theta < std::cos(kThetaInverted)) SetOnce(&summary_.t_theta_above_2_9, t);
+  min_cos_theta_ = std::min(min_cos_theta_, cos_theta);
+
+  // contact phases
+  const bool big = contacts[kBigSphere].closed;
+  const bool peg = contacts[kPegSphere].closed;
+  if (peg) SetOnce(&summary_.t_peg_touchdown, t);
+  if (peg && !big) {
+    SetOnce(&summary_.t_big_sphere_liftoff, t);
+    ++peg_only_steps_;
+  }
+  if (big && summary_.t_theta_above_2_9) SetOnce(&summary_.t_fall_back, t);
+  for (const ContactState& c : contacts) summary_.min_gap = std::min(summary_.min_gap, c.gap);
+
+  // solver
+  total_iterations_ += stats.solver.iterations;
+  summary_.max_iterations = std::max(summary_.max_iterations, stats.solver.iterations);
+  if (!stats.solver.converged) ++summary_.unconverged_steps;
+  summary_.max_dt_omega = std::max(summary_.max_dt_omega, stats.max_dt_omega);
+  summary_.steps = step;
+}
+
+RunSummary RunMonitor::Finish(const Simulator& simulator) {
+  const BodyState& s = simulator.state()[0];
+  summary_.theta_final = Inclination(s);
+  summary_.theta_max = std::acos(std::clamp(min_cos_theta_, -1.0, 1.0));
+  summary_.z_final = s.position.z();
+  summary_.energy_final = simulator.Energy();
+  summary_.jellett_final = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  summary_.vertical_spin_final = VerticalSpin(s);
+  summary_.time_on_peg_s = static_cast<double>(peg_only_steps_) * time_step_;
+  summary_.mean_iterations =
+      summary_.steps > 0 ? static_cast<double>(total_iterations_) / summary_.steps : 0.0;
+  if (summary_.steps == 0) summary_.max_energy_increase = 0.0;
+  return summary_;
+}
+
+CsvRecorder::CsvRecorder(const Simulator& simulator, long expected_rows) {
+  columns_ = {"t",  "x_s",   "y_s",    "z_s",     "qw",           "qx",
+              "qy", "qz",    "theta",  "energy",  "jellett",      "vertical_spin"};
+  for (const Sphere& sphere : simulator.scene().spheres) {
+    for (const char* field : {"_closed", "_lambda_n", "_lambda_t1", "_lambda_t2", "_lambda_tau"}) {
+      columns_.push_back(sphere.name + field);
+    }
+  }
+  columns_.push_back("iterations");
+  columns_.push_back("converged");
+  values_.reserve(static_cast<std::size_t>(expected_rows) * columns_.size());
+}
+
+void CsvRecorder::Record(double time, const Simulator& simulator, const StepStatistics& stats) {
+  const BodyState& s = simulator.state()[0];
+  const double row[] = {time,
+                        s.position.x(),
+                        s.position.y(),
+                        s.position.z(),
+                        s.orientation.w(),
+                        s.orientation.x(),
+                        s.orientation.y(),
+                        s.orientation.z(),
+                        Inclination(s),
+                        simulator.Energy(),
+                        JellettIntegral(simulator.scene(), simulator.state(), kBigSphere),
+                        VerticalSpin(s)};
+  values_.insert(values_.end(), std::begin(row), std::end(row));
+  for (const ContactState& c : simulator.contacts()) {
+    values_.push_back(c.closed ? 1.0 : 0.0);
+    for (int k = 0; k < 4; ++k) values_.push_back(c.percussion[k]);
+  }
+  values_.push_back(stats.solver.iterations);
+  values_.push_back(stats.solver.converged ? 1.0 : 0.0);
+}
+
+bool CsvRecorder::Write(const std::string& path) const {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr) return false;
+  std::string text;
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    text += columns_[k];
+    text += k + 1 < columns_.size() ? ',' : '\n';
+  }
+  char buffer[32];
+  for (std::size_t k = 0; k < values_.size(); ++k) {
+    // 15 significant digits: t = k·Δt prints as 0.003, not 0.0030000000000000001
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), values_[k],
+                                      std::chars_format::general, kSignificantDigits);
+    text.append(buffer, result.ptr);
+    text += (k + 1) % columns_.size() == 0 ? '\n' : ',';
+  }
+  const bool ok = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  return std::fclose(file) == 0 && ok;
+}
+
+}  // namespace nonsmooth_sim::simulate

@@ -1,0 +1,89 @@
+// What `simulate` observes during a Tippe-Top run: per-step monitors for the JSON summary
+// (threshold times, energy, contact phases) and the decimated CSV rows.
+#ifndef NONSMOOTH_SIM_SIMULATE_MONITOR_H_
+#define NONSMOOTH_SIM_SIMULATE_MONITOR_H_
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "nonsmooth_sim/core/simulator.h"
+
+namespace nonsmooth_sim::simulate {
+
+/// Sphere indices of the Tippe-Top scene (tippe_top.h).
+inline constexpr int kBigSphere = 0;
+inline constexpr int kPegSphere = 1;
+
+struct RunSummary {
+  RunConfig config;
+  long steps = 0;
+  double wall_time_s = 0.0;         ///< stepping and per-step monitors, no file output [s]
+  double cpu_time_s = 0.0;          ///< thread CPU time of the same loop [s]
+  double output_wall_time_s = 0.0;  ///< formatting and writing CSV [s]
+  std::optional<double> t_theta_above_pi_2;
+  std::optional<double> t_theta_above_2_4;  ///< peg touchdown
+  std::optional<double> t_theta_above_2_9;  ///< inverted
+  std::optional<double> t_peg_touchdown;    ///< first step with the peg contact closed
+  std::optional<double> t_big_sphere_liftoff;  ///< first step on the peg alone
+  /// First step with the big sphere closed again after the top was inverted (θ > 2.9).
+  std::optional<double> t_fall_back;
+  double time_on_peg_s = 0.0;  ///< total time with the peg closed and the big sphere open
+  double theta_final = 0.0;
+  double theta_max = 0.0;
+  double z_final = 0.0;
+  double energy_initial = 0.0;
+  double energy_final = 0.0;
+  double max_energy_increase = 0.0;  ///< largest E(t+Δt) - E(t) [J]
+  double max_energy_increase_time = 0.0;
+  double max_energy_above_initial = 0.0;  ///< max_t E(t) - E(0) [J]
+  double jellett_initial = 0.0;
+  double jellett_final = 0.0;
+  double vertical_spin_initial = 0.0;
+  double vertical_spin_final = 0.0;
+  double min_gap = 0.0;  ///< smallest gap of any contact at the end of a step [m]
+  double max_dt_omega = 0.0;
+  double mean_iterations = 0.0;
+  int max_iterations = 0;
+  long unconverged_steps = 0;
+};
+
+/// Accumulates RunSummary step by step without allocating.
+class RunMonitor {
+ public:
+  RunMonitor(const RunConfig& config, const Simulator& simulator);
+  void Observe(long step, const Simulator& simulator, const StepStatistics& stats);
+  RunSummary Finish(const Simulator& simulator);
+
+ private:
+  RunSummary summary_;
+  double time_step_;
+  double energy_previous_;
+  double min_cos_theta_;
+  long total_iterations_ = 0;
+  long peg_only_steps_ = 0;
+};
+
+/// Decimated CSV rows, stored as numbers during the run and formatted afterwards.
+class CsvRecorder {
+ public:
+  CsvRecorder(const Simulator& simulator, long expected_rows);
+  void Record(double time, const Simulator& simulator, const StepStatistics& stats);
+  /// Writes header and rows; false if the file cannot be written.
+  bool Write(const std::string& path) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<double> values_;
+};
+
+/// Writes the JSON summary; false if the file cannot be written.
+bool WriteSummaryJson(const RunSummary& summary, const std::string& path);
+
+/// The vertical spin: world z component of ω [rad/s].
+double VerticalSpin(const BodyState& state);
+
+}  // namespace nonsmooth_sim::simulate
+
+#endif  // NONSMOOTH_SIM_SIMULATE_MONITOR_H_

@@ -1,0 +1,109 @@
+// The JSON summary of a `simulate` run (field names are part of the interface: scripts/demo and
+// the README read them).
+#include <charconv>
+#include <cstdio>
+#include <string>
+
+#include "monitor.h"
+
+namespace nonsmooth_sim::simulate {
+namespace {
+
+constexpr int kSignificantDigits = 15;
+
+class JsonObject {
+ public:
+  void Add(const char* key, const std::string& value) {
+    Key(key);
+    text_ += '"';
+    text_ += value;  // names and enums only: no characters that need escaping
+    text_ += '"';
+  }
+  void Add(const char* key, double value) {
+    Key(key);
+    // 15 significant digits: times k·Δt print as 1.3695, not 1.3695000000000002
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
+                                      std::chars_format::general, kSignificantDigits);
+    text_.append(buffer, result.ptr);
+  }
+  void Add(const char* key, long value) { Add(key, static_cast<double>(value)); }
+  void Add(const char* key, int value) { Add(key, static_cast<double>(value)); }
+  void Add(const char* key, const std::optional<double>& value) {
+    if (value) {
+      Add(key, *value);
+    } else {
+      Key(key);
+      text_ += "null";
+    }
+  }
+  std::string Text() const { return text_ + "\n}\n"; }
+
+ private:
+  void Key(const char* key) {
+    text_ += text_.empty() ? "{\n  \"" : ",\n  \"";
+    text_ += key;
+    text_ += "\": ";
+  }
+  std::string text_;
+};
+
+}  // namespace
+
+bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
+  const RunConfig& c = s.config;
+  JsonObject json;
+  // the fields of the issue, in its order
+  json.Add("friction_set", std::string(FrictionSetName(c.parameters.friction_set)));
+  json.Add("solver", std::string(SolverTypeName(c.options.solver.type)));
+  json.Add("dt", c.options.time_step);
+  json.Add("duration", c.duration);
+  json.Add("steps", s.steps);
+  json.Add("wall_time_s", s.wall_time_s);
+  json.Add("steps_per_second", s.wall_time_s > 0.0 ? s.steps / s.wall_time_s : 0.0);
+  json.Add("t_theta_above_pi_2", s.t_theta_above_pi_2);
+  json.Add("t_theta_above_2_4", s.t_theta_above_2_4);
+  json.Add("theta_final", s.theta_final);
+  json.Add("z_final", s.z_final);
+  json.Add("energy_initial", s.energy_initial);
+  json.Add("energy_final", s.energy_final);
+  json.Add("max_energy_increase", s.max_energy_increase);
+  json.Add("jellett_initial", s.jellett_initial);
+  json.Add("jellett_final", s.jellett_final);
+  json.Add("mean_iterations", s.mean_iterations);
+  json.Add("max_iterations", s.max_iterations);
+  json.Add("unconverged_steps", s.unconverged_steps);
+  // extras
+  json.Add("gyroscopic", std::string(GyroscopicSchemeName(c.options.gyroscopic)));
+  json.Add("tolerance_rel", c.options.solver.tolerance_rel);
+  json.Add("tolerance_abs", c.options.solver.tolerance_abs);
+  json.Add("solver_max_iterations", c.options.solver.max_iterations);
+  json.Add("relaxation", c.options.solver.relaxation);
+  json.Add("mu", c.parameters.mu);
+  json.Add("contact_radius", c.parameters.contact_radius);
+  json.Add("inclination_initial", c.initial.inclination);
+  json.Add("spin_initial", c.initial.spin);
+  json.Add("real_time_factor", s.wall_time_s > 0.0 ? c.duration / s.wall_time_s : 0.0);
+  json.Add("cpu_time_s", s.cpu_time_s);
+  json.Add("output_wall_time_s", s.output_wall_time_s);
+  json.Add("t_theta_above_2_9", s.t_theta_above_2_9);
+  json.Add("t_peg_touchdown", s.t_peg_touchdown);
+  json.Add("t_big_sphere_liftoff", s.t_big_sphere_liftoff);
+  json.Add("t_fall_back", s.t_fall_back);
+  json.Add("time_on_peg_s", s.time_on_peg_s);
+  json.Add("theta_max", s.theta_max);
+  json.Add("max_energy_increase_time", s.max_energy_increase_time);
+  json.Add("max_energy_above_initial", s.max_energy_above_initial);
+  json.Add("vertical_spin_initial", s.vertical_spin_initial);
+  json.Add("vertical_spin_final", s.vertical_spin_final);
+  json.Add("min_gap", s.min_gap);
+  json.Add("max_dt_omega", s.max_dt_omega);
+
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr) return false;
+  const std::string text = json.Text();
+  const bool ok = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  return std::fclose(file) == 0 && ok;
+}
+
+}  // namespace nonsmooth_sim::simulate

@@ -1,0 +1,1092 @@
+// ContactSolver: exact answers for single contacts, problems with a constructed solution on
+// coupled rigid-body Delassus matrices, an independent check of the inclusion (17), the paper's
+// central claim (E_F directly = S_F through the transformation), the iteration counts of (43)
+// against (46) on a badly scaled problem, and the API contract (validation, statistics, warm
+// start, no allocation).
+//
+// Sign convention (contact_solver.h): -ξ_i ∈ N_{C_i}(Λ_i) with C_i the set of admissible Λ_i.
+#include "nonsmooth_sim/core/contact_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nonsmooth_sim/core/transformation.h"
+
+// ---- counting every heap allocation of this process (glibc: replace malloc, forward to it) ----
+namespace {
+std::atomic<long> g_heap_allocations{0};
+}  // namespace
+extern "C" {
+void* __libc_malloc(size_t size);
+void* __libc_calloc(size_t count, size_t size);
+void* __libc_realloc(void* pointer, size_t size);
+void __libc_free(void* pointer);
+void* malloc(size_t size) noexcept {
+  ++g_heap_allocations;
+  return __libc_malloc(size);
+}
+void* calloc(size_t count, size_t size) noexcept {
+  ++g_heap_allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, size_t size) noexcept {
+  ++g_heap_allocations;
+  return __libc_realloc(pointer, size);
+}
+void free(void* pointer) noexcept { __libc_free(pointer); }
+}
+
+namespace nonsmooth_sim {
+namespace {
+
+constexpr std::uint64_t kSeed = 1620091;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInverseGoldenRatio = 0.618033988749895;  // golden-section search
+
+ContactLaw MakeLaw(FrictionSet set, double mu, double rbar) {
+  ContactLaw law;
+  law.friction_set = set;
+  law.mu = mu;
+  law.rbar = rbar;
+  return law;
+}
+
+SolverOptions Tight(SolverType type) {
+  SolverOptions options;
+  options.type = type;
+  options.tolerance_rel = 1e-13;
+  options.tolerance_abs = 1e-16;
+  options.max_iterations = 200000;
+  return options;
+}
+
+// λ_max(D^{-1/2} G D^{-1/2}), D = diag(G)
+double ScaledMaxEigenvalue(const Eigen::MatrixXd& g) {
+  const Eigen::VectorXd d = g.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd scaled = d.asDiagonal() * g * d.asDiagonal();
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled).eigenvalues().maxCoeff();
+}
+
+// Tight options with a relaxation α inside the convergence condition stated in contact_solver.h
+// (with margin: α ≤ 1.6/λ_max), for coupled problems.
+SolverOptions Convergent(SolverType type, const ContactProblem& problem) {
+  double lambda_max = ScaledMaxEigenvalue(problem.G);
+  if (type == SolverType::kGaussSeidel) {
+    lambda_max = 0.0;
+    for (const ContactBlock& contact : problem.contacts) {
+      const int dim = ContactDimension(contact.law);
+      lambda_max = std::max(lambda_max, ScaledMaxEigenvalue(problem.G.block(
+                                            contact.offset, contact.offset, dim, dim)));
+    }
+  }
+  SolverOptions options = Tight(type);
+  options.relaxation = std::min(1.0, 1.6 / lambda_max);
+  return options;
+}
+
+constexpr std::array<SolverType, 3> kAllSolverTypes = {
+    SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel};
+
+ContactProblem SingleContact(const ContactLaw& law, const Eigen::VectorXd& g_diagonal,
+                             const Eigen::VectorXd& c) {
+  ContactProblem problem;
+  problem.contacts = {{0, law}};
+  problem.G = g_diagonal.asDiagonal();
+  problem.c = c;
+  return problem;
+}
+
+// ---- the Coulomb-Contensou boundary (51)-(52), written out independently, for μλ_N = 1, R̄ = 1 --
+struct Boundary {
+  double t;    // b_T(u)
+  double tau;  // b_τ(u)
+};
+// Beyond this u the closed forms cancel (absolute error ~ u³·1e-16 in b_τ); there the curve is
+// within 1e-7 of the rim (1, 0), which the checks below use instead.
+constexpr double kMaxU = 1e3;
+Boundary ContensouCurve(double u) {
+  if (u <= 1.0) return {3.0 * kPi / 32.0 * (-u * u * u + 4.0 * u), (3 * std::pow(u, 4) - 8 * u * u + 8) / 8.0};
+  const double arcsin = std::asin(1.0 / u);
+  const double root = std::sqrt(u * u - 1.0);
+  return {3.0 / 16.0 * ((-u * u * u + 4.0 * u) * arcsin + (u * u + 2.0) / u * root),
+          ((3 * std::pow(u, 4) - 8 * u * u + 8) * arcsin + (-3 * u * u + 6) * root) / (4.0 * kPi)};
+}
+// outward normal of B_F's cross-section at u in the normalised coordinates (b_T, b_τ): on both
+// branches of (51)-(52) db_τ/du = -u (16/3π) db_T/du (for u ≤ 1 by differentiating the
+// polynomials), so the normal (-b_τ', b_T') is ∝ (16u/3π, 1)
+Eigen::Vector2d ContensouNormal(double u) {
+  return Eigen::Vector2d(16.0 * u / (3.0 * kPi), 1.0).normalized();
+}
+
+// ---- independent check of the inclusion (17): normal complementarity, Λ_F ∈ F, and
+// -ξ_F ∈ N_F(Λ_F) through the support function: σ_F(-ξ_F) = -ξ_F·Λ_F ----
+// support function of the law's friction set of radius rho in direction d = (d_T1, d_T2, d_τ)
+double Support(const ContactLaw& law, int dim, const Eigen::Vector3d& d, double rho) {
+  const double d_t = d.head<2>().norm();
+  const double d_tau = std::abs(d.z());
+  if (dim == 3) return rho * d_t;
+  switch (law.friction_set) {
+    case FrictionSet::kCylinder: return rho * (d_t + law.rbar * d_tau);
+    case FrictionSet::kEllipsoid:
+    case FrictionSet::kSphere: return rho * std::hypot(d_t, law.rbar * d_tau);
+    case FrictionSet::kExact: {
+      // max over the boundary curve: dense sampling in u = tan(θ), then golden section; for
+      // u > kMaxU the rim value d_t (low by at most R̄ d_τ b_τ(kMaxU) ≈ 3e-4 R̄ d_τ, and only
+      // where d_τ is negligible)
+      const auto value = [&](double theta) {
+        const double u = std::tan(theta);
+        if (theta >= kPi / 2 || u > kMaxU) return d_t;
+        const Boundary b = ContensouCurve(u);
+        return d_t * b.t + law.rbar * d_tau * b.tau;
+      };
+      constexpr int kSamples = 2000;
+      int best = 0;
+      for (int k = 1; k <= kSamples; ++k) {
+        if (value(k * kPi / 2 / kSamples) > value(best * kPi / 2 / kSamples)) best = k;
+      }
+      double lo = std::max(0, best - 1) * kPi / 2 / kSamples;
+      double hi = std::min(kSamples, best + 1) * kPi / 2 / kSamples;
+      for (int k = 0; k < 100; ++k) {
+        const double a = hi - (hi - lo) * kInverseGoldenRatio;
+        const double b = lo + (hi - lo) * kInverseGoldenRatio;
+        (value(a) < value(b) ? lo : hi) = value(a) < value(b) ? a : b;
+      }
+      return rho * std::max(value(0.5 * (lo + hi)), value(best * kPi / 2 / kSamples));
+    }
+    case FrictionSet::kCoulomb: break;
+  }
+  return rho * d_t;
+}
+
+// level ≤ 1 ⇔ inside the friction set of radius rho > 0
+double Level(const ContactLaw& law, int dim, const Eigen::Vector3d& p, double rho) {
+  const double t = p.head<2>().norm() / rho;
+  const double s = std::abs(p.z()) / (law.rbar * rho);
+  if (dim == 3) return t;
+  switch (law.friction_set) {
+    case FrictionSet::kCylinder: return std::max(t, s);
+    case FrictionSet::kEllipsoid:
+    case FrictionSet::kSphere: return std::hypot(t, s);
+    case FrictionSet::kExact: {
+      // b_T increases, b_τ decreases along the curve: find u with b_T(u) = t, compare b_τ(u)
+      const Boundary rim = ContensouCurve(kMaxU);
+      if (t >= rim.t) return std::max(t, 1.0 + (s - rim.tau));
+      double lo = 0.0;
+      double hi = std::atan(kMaxU);
+      for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (ContensouCurve(std::tan(mid)).t < t ? lo : hi) = mid;
+      }
+      const double b_tau = ContensouCurve(std::tan(0.5 * (lo + hi))).tau;
+      return 1.0 + (s - b_tau);
+    }
+    case FrictionSet::kCoulomb: break;
+  }
+  return t;
+}
+
+::testing::AssertionResult SatisfiesInclusion(const ContactProblem& problem,
+                                              const Eigen::VectorXd& lambda, double tolerance) {
+  const Eigen::VectorXd xi = problem.G * lambda + problem.c;
+  const double lambda_scale = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
+  const double xi_scale =
+      std::max({problem.c.cwiseAbs().maxCoeff(), (problem.G * lambda).cwiseAbs().maxCoeff(), 1e-300});
+  for (std::size_t i = 0; i < problem.contacts.size(); ++i) {
+    const ContactBlock& contact = problem.contacts[i];
+    const int dim = ContactDimension(contact.law);
+    const double lambda_n = lambda[contact.offset];
+    const double xi_n = xi[contact.offset];
+    // Signorini: Λ_N ≥ 0, ξ_N ≥ 0, Λ_N ξ_N = 0
+    if (lambda_n < -tolerance * lambda_scale || xi_n < -tolerance * xi_scale ||
+        std::abs(lambda_n * xi_n) > tolerance * lambda_scale * xi_scale) {
+      return ::testing::AssertionFailure()
+             << "contact " << i << ": normal Λ_N = " << lambda_n << ", ξ_N = " << xi_n;
+    }
+    if (dim == 1) continue;
+    Eigen::Vector3d lambda_f = Eigen::Vector3d::Zero();
+    Eigen::Vector3d xi_f = Eigen::Vector3d::Zero();
+    lambda_f.head(dim - 1) = lambda.segment(contact.offset + 1, dim - 1);
+    xi_f.head(dim - 1) = xi.segment(contact.offset + 1, dim - 1);
+    const double rho = contact.law.mu * std::max(lambda_n, 0.0);
+    // τ in units of N s: divide by R̄
+    const double tau_unit = dim == 4 ? contact.law.rbar : 1.0;
+    if (rho <= tolerance * lambda_scale) {
+      if (lambda_f.head<2>().norm() + std::abs(lambda_f.z()) / tau_unit > tolerance * lambda_scale) {
+        return ::testing::AssertionFailure() << "contact " << i << ": friction without Λ_N";
+      }
+      continue;
+    }
+    const double level = Level(contact.law, dim, lambda_f, rho);
+    if (level > 1.0 + tolerance) {
+      return ::testing::AssertionFailure()
+             << "contact " << i << ": Λ_F outside the set, level " << level;
+    }
+    const Eigen::Vector3d d = -xi_f;
+    const double gap = Support(contact.law, dim, d, rho) - d.dot(lambda_f);
+    const double scale = rho * (d.head<2>().norm() + tau_unit * std::abs(d.z()));
+    // ξ_F below tolerance·ξ_scale counts as zero (round-off of GΛ + c at stiction)
+    if (gap > tolerance * std::max(scale, xi_scale * rho)) {
+      return ::testing::AssertionFailure()
+             << "contact " << i << ": -ξ_F not in N_F(Λ_F): σ(-ξ) + ξ·Λ = " << gap
+             << " (scale " << scale << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// ---- rigid-body Delassus matrices (16): a chain ground - body 0 - body 1 - ..., one contact per
+// link, so that G = Wᵀ M⁻¹ W is positive definite (6 velocities per body, ≤ 4 per contact) ----
+Eigen::Vector3d RandomUnit(std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  Eigen::Vector3d v(normal(rng), normal(rng), normal(rng));
+  return v.normalized();
+}
+
+Eigen::MatrixXd ChainDelassus(const std::vector<ContactLaw>& laws, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int m = static_cast<int>(laws.size());
+  const int k = 6 * m;
+  Eigen::MatrixXd m_inverse = Eigen::MatrixXd::Zero(k, k);
+  std::vector<Eigen::Vector3d> com(m);
+  for (int b = 0; b < m; ++b) {
+    const double mass = 0.5 + 1.5 * unit(rng);
+    const Eigen::Vector3d principal(0.05 + 0.25 * unit(rng), 0.05 + 0.25 * unit(rng),
+                                    0.05 + 0.25 * unit(rng));
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(2 * kPi * unit(rng), RandomUnit(rng)).toRotationMatrix();
+    const Eigen::Matrix3d inertia = rotation * principal.asDiagonal() * rotation.transpose();
+    m_inverse.block<3, 3>(6 * b, 6 * b) = Eigen::Matrix3d::Identity() / mass;
+    m_inverse.block<3, 3>(6 * b + 3, 6 * b + 3) = inertia.inverse();
+    com[b] = 0.3 * RandomUnit(rng);
+  }
+  int n = 0;
+  for (const ContactLaw& law : laws) n += ContactDimension(law);
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(k, n);
+  int offset = 0;
+  for (int i = 0; i < m; ++i) {
+    const int dim = ContactDimension(laws[i]);
+    const Eigen::Vector3d point = com[i] + 0.3 * RandomUnit(rng);
+    const Eigen::Vector3d normal = RandomUnit(rng);
+    const Eigen::Vector3d t1 = normal.unitOrthogonal();
+    const Eigen::Vector3d t2 = normal.cross(t1);
+    const Eigen::Vector3d directions[3] = {normal, t1, t2};
+    // force +d on body i at the point, -d on body i-1 (the ground for i = 0)
+    const auto add = [&](int column, int body, double sign, const Eigen::Vector3d& force,
+                         const Eigen::Vector3d& torque) {
+      w.block<3, 1>(6 * body, column) += sign * force;
+      w.block<3, 1>(6 * body + 3, column) += sign * torque;
+    };
+    for (int c = 0; c < std::min(dim, 3); ++c) {
+      const Eigen::Vector3d& d = directions[c];
+      add(offset + c, i, 1.0, d, (point - com[i]).cross(d));
+      if (i > 0) add(offset + c, i - 1, -1.0, d, (point - com[i - 1]).cross(d));
+    }
+    if (dim == 4) {
+      // drilling: a pure torque about the normal
+      add(offset + 3, i, 1.0, Eigen::Vector3d::Zero(), normal);
+      if (i > 0) add(offset + 3, i - 1, -1.0, Eigen::Vector3d::Zero(), normal);
+    }
+    offset += dim;
+  }
+  return w.transpose() * m_inverse * w;
+}
+
+// ---- problems with a constructed solution: pick Λ*, ξ* satisfying the inclusion per contact,
+// then c = ξ* - GΛ* ----
+enum class Regime { kSeparated, kSticking, kSliding };
+
+struct Constructed {
+  ContactProblem problem;
+  Eigen::VectorXd solution;
+  std::vector<Regime> regimes;
+};
+
+// a boundary point of the friction set (radius rho) and an outward normal there
+void FrictionBoundaryPoint(const ContactLaw& law, int dim, double rho, std::mt19937_64& rng,
+                           Eigen::Vector3d* point, Eigen::Vector3d* normal) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double angle = 2 * kPi * unit(rng);
+  const Eigen::Vector3d e(std::cos(angle), std::sin(angle), 0.0);
+  const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
+  const Eigen::Vector3d up(0.0, 0.0, sign);
+  if (dim == 3) {
+    *point = rho * e;
+    *normal = e;
+    return;
+  }
+  const double rbar = law.rbar;
+  switch (law.friction_set) {
+    case FrictionSet::kCylinder: {
+      const int where = static_cast<int>(3 * unit(rng));
+      if (where == 0) {  // side
+        *point = rho * e + (0.9 * (2 * unit(rng) - 1)) * rbar * rho * up;
+        *normal = e;
+      } else if (where == 1) {  // cap
+        *point = (0.9 * unit(rng)) * rho * e + rbar * rho * up;
+        *normal = up;
+      } else {  // edge: any positive combination
+        *point = rho * e + rbar * rho * up;
+        *normal = (0.1 + unit(rng)) * e + (0.1 + unit(rng)) * up;
+      }
+      return;
+    }
+    case FrictionSet::kEllipsoid:
+    case FrictionSet::kSphere: {
+      const double phi = (unit(rng) - 0.5) * 0.98 * kPi;
+      *point = rho * std::cos(phi) * e + rbar * rho * std::sin(phi) * Eigen::Vector3d::UnitZ();
+      // the gradient of (55)
+      *normal = Eigen::Vector3d(point->x() / (rho * rho), point->y() / (rho * rho),
+                                point->z() / (rbar * rho * rbar * rho));
+      return;
+    }
+    case FrictionSet::kExact: {
+      const double u = 0.05 + 3.0 * unit(rng);
+      const Boundary b = ContensouCurve(u);
+      const Eigen::Vector2d n = ContensouNormal(u);
+      *point = rho * b.t * e + rbar * rho * b.tau * up;
+      // the cross-section normal (n_t, n_s) in units of (ρ, R̄ρ): back to (N s, N m s)
+      *normal = n.x() * e + n.y() / rbar * up;
+      return;
+    }
+    case FrictionSet::kCoulomb: break;
+  }
+  *point = rho * e;
+  *normal = e;
+}
+
+Constructed Construct(const std::vector<ContactLaw>& laws, const std::vector<Regime>& regimes,
+                      std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Constructed out;
+  out.regimes = regimes;
+  out.problem.G = ChainDelassus(laws, rng);
+  const Eigen::Index n = out.problem.G.rows();
+  out.solution = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd xi = Eigen::VectorXd::Zero(n);
+  int offset = 0;
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    const int dim = ContactDimension(laws[i]);
+    out.problem.contacts.push_back({offset, laws[i]});
+    const Regime regime = dim == 1 && regimes[i] == Regime::kSliding ? Regime::kSticking : regimes[i];
+    out.regimes[i] = regime;
+    if (regime == Regime::kSeparated) {
+      xi[offset] = 0.2 + unit(rng);
+      for (int k = 1; k < dim; ++k) xi[offset + k] = 2 * unit(rng) - 1;
+    } else {
+      const double lambda_n = 0.5 + 1.5 * unit(rng);
+      out.solution[offset] = lambda_n;
+      if (dim > 1) {
+        Eigen::Vector3d point;
+        Eigen::Vector3d normal;
+        FrictionBoundaryPoint(laws[i], dim, laws[i].mu * lambda_n, rng, &point, &normal);
+        if (regime == Regime::kSticking) {
+          out.solution.segment(offset + 1, dim - 1) = (0.1 + 0.7 * unit(rng)) * point.head(dim - 1);
+        } else {
+          out.solution.segment(offset + 1, dim - 1) = point.head(dim - 1);
+          // -ξ_F along the outward normal, sized so that |ξ_T| + R̄|ξ_τ| ∈ [0.2, 1.2]
+          const double tau_unit = dim == 4 ? laws[i].rbar : 0.0;
+          const double size =
+              (0.2 + unit(rng)) / (normal.head<2>().norm() + tau_unit * std::abs(normal.z()));
+          xi.segment(offset + 1, dim - 1) = (-size * normal).head(dim - 1);
+        }
+      }
+    }
+    offset += dim;
+  }
+  out.problem.c = xi - out.problem.G * out.solution;
+  return out;
+}
+
+// "sphere(μ=0.3, R̄=0.02) sliding, ..." for failure messages
+std::string Describe(const ContactProblem& problem, const std::vector<Regime>& regimes = {}) {
+  std::string text;
+  for (std::size_t i = 0; i < problem.contacts.size(); ++i) {
+    const ContactLaw& law = problem.contacts[i].law;
+    text += std::string(FrictionSetName(law.friction_set)) + "(mu=" + std::to_string(law.mu) +
+            ", rbar=" + std::to_string(law.rbar) + ")";
+    if (i < regimes.size()) {
+      text += regimes[i] == Regime::kSeparated ? " separated"
+              : regimes[i] == Regime::kSticking ? " sticking"
+                                                : " sliding";
+    }
+    text += "; ";
+  }
+  return text;
+}
+
+std::vector<ContactLaw> RandomLaws(int m, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ContactLaw> laws;
+  for (int i = 0; i < m; ++i) {
+    const int pick = static_cast<int>(7 * unit(rng));
+    const double mu = 0.1 + 0.5 * unit(rng);
+    const double rbar = 0.02 + 0.08 * unit(rng);
+    if (pick == 5) {
+      laws.push_back(MakeLaw(FrictionSet::kSphere, 0.0, rbar));  // frictionless, dim 1
+    } else if (pick == 6) {
+      laws.push_back(MakeLaw(FrictionSet::kEllipsoid, mu, 0.0));  // no drilling, dim 3
+    } else {
+      laws.push_back(MakeLaw(kAllFrictionSets[pick], mu, rbar));
+    }
+  }
+  return laws;
+}
+
+std::vector<Regime> RandomRegimes(int m, std::mt19937_64& rng) {
+  std::vector<Regime> regimes;
+  for (int i = 0; i < m; ++i) regimes.push_back(static_cast<Regime>(rng() % 3));
+  return regimes;
+}
+
+// |Λ - Λ*| per component against the scale of its contact (τ in units of R̄)
+::testing::AssertionResult NearSolution(const ContactProblem& problem, const Eigen::VectorXd& a,
+                                        const Eigen::VectorXd& b, double tolerance) {
+  const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
+  for (const ContactBlock& contact : problem.contacts) {
+    const int dim = ContactDimension(contact.law);
+    for (int k = 0; k < dim; ++k) {
+      const double unit = k == 3 ? contact.law.rbar : 1.0;
+      const int index = contact.offset + k;
+      if (std::abs(a[index] - b[index]) > tolerance * scale * unit) {
+        return ::testing::AssertionFailure() << "component " << index << ": " << a[index]
+                                             << " vs " << b[index];
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// ============================== single contacts with exact answers ==============================
+
+TEST(SingleContact, SeparationGivesZero) {
+  for (FrictionSet set : kAllFrictionSets) {
+    for (double mu : {0.0, 0.4}) {
+      const ContactLaw law = MakeLaw(set, mu, 0.05);
+      const int dim = ContactDimension(law);
+      const Eigen::VectorXd g = Eigen::Vector4d(2.0, 3.0, 3.0, 50.0).head(dim);
+      // c_N > 0: the contact opens, whatever the tangential velocities
+      const Eigen::VectorXd c = Eigen::Vector4d(0.5, 0.3, -0.2, 0.1).head(dim);
+      for (SolverType type : kAllSolverTypes) {
+        ContactSolver solver;
+        Eigen::VectorXd lambda = Eigen::VectorXd::Ones(dim);  // a wrong warm start
+        const SolverStatistics stats = solver.Solve(SingleContact(law, g, c), Tight(type), &lambda);
+        EXPECT_TRUE(stats.converged);
+        EXPECT_EQ(lambda, Eigen::VectorXd::Zero(dim)) << FrictionSetName(set) << " μ=" << mu;
+        EXPECT_TRUE(stats.normal_projected[0]);
+      }
+    }
+  }
+}
+
+TEST(SingleContact, StictionIsTheUnconstrainedSolution) {
+  // Λ* = (1, 0.1, -0.05, 0.001) lies inside every set with μ = 0.3, R̄ = 0.02; c = -GΛ*
+  const Eigen::Vector4d expected(1.0, 0.1, -0.05, 0.001);
+  const Eigen::Vector4d g(2.0, 3.0, 5.0, 700.0);
+  for (FrictionSet set : kAllFrictionSets) {
+    const ContactLaw law = MakeLaw(set, 0.3, 0.02);
+    const int dim = ContactDimension(law);
+    const Eigen::VectorXd c = -g.head(dim).cwiseProduct(expected.head(dim));
+    for (SolverType type : kAllSolverTypes) {
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(dim);
+      const SolverStatistics stats =
+          solver.Solve(SingleContact(law, g.head(dim), c), Tight(type), &lambda);
+      ASSERT_TRUE(stats.converged) << FrictionSetName(set);
+      for (int k = 0; k < dim; ++k) {
+        // (43) converges at 1 - g_N/g_τ per iteration: error ≈ 350 × the last change
+        EXPECT_NEAR(lambda[k], expected[k], 1e-10 * std::abs(expected[k]))
+            << FrictionSetName(set) << " " << SolverTypeName(type) << " component " << k;
+      }
+      EXPECT_FALSE(stats.friction_projected[0]);
+      EXPECT_FALSE(stats.normal_projected[0]);
+    }
+  }
+}
+
+TEST(SingleContact, SlidingWithoutDrillingOpposesTheSlip) {
+  // G = diag(2, 3, 3), c = (-2, 4, -3): Λ_N = 1, |c_T| = 5 > g_T μΛ_N = 0.9, so
+  // Λ_T = -μΛ_N c_T/|c_T| = (-0.24, 0.18) and ξ_T = c_T + g_T Λ_T = (3.28, -2.46) ∥ -Λ_T.
+  const Eigen::Vector3d g(2.0, 3.0, 3.0);
+  const Eigen::Vector3d c(-2.0, 4.0, -3.0);
+  const Eigen::Vector3d expected(1.0, -0.24, 0.18);
+  // coulomb, and every law without drilling (R̄ = 0 → the disk)
+  for (FrictionSet set : kAllFrictionSets) {
+    const ContactLaw law = MakeLaw(set, 0.3, set == FrictionSet::kCoulomb ? 0.05 : 0.0);
+    ASSERT_EQ(ContactDimension(law), 3);
+    for (SolverType type : kAllSolverTypes) {
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(3);
+      const SolverStatistics stats = solver.Solve(SingleContact(law, g, c), Tight(type), &lambda);
+      ASSERT_TRUE(stats.converged);
+      EXPECT_LT((lambda - expected).norm(), 1e-12) << FrictionSetName(set);
+      EXPECT_TRUE(stats.friction_projected[0]);
+      const Eigen::Vector2d xi_t = c.tail<2>() + g.tail<2>().cwiseProduct(lambda.tail<2>());
+      EXPECT_NEAR(xi_t.normalized().dot(lambda.tail<2>().normalized()), -1.0, 1e-12);
+    }
+  }
+}
+
+TEST(SingleContact, SlidingAndSpinningWithDrilling) {
+  const double rbar = 0.02;
+  const double mu = 0.3;
+  // Λ_N = -c_N/g_N = 1.5, radius ρ = 0.45
+  const Eigen::Vector4d g(2.0, 3.0, 3.0, 400.0);
+  const double lambda_n = 1.5;
+  const double rho = mu * lambda_n;
+  for (FrictionSet set : {FrictionSet::kCylinder, FrictionSet::kEllipsoid, FrictionSet::kSphere,
+                          FrictionSet::kExact}) {
+    const ContactLaw law = MakeLaw(set, mu, rbar);
+    std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> cases;  // (c, exact Λ)
+    // pure sliding (c_τ = 0): every set's equator is the disk: Λ_T = -ρ c_T/|c_T|, Λ_τ = 0
+    cases.push_back({Eigen::Vector4d(-3.0, 2.4, -3.2, 0.0),
+                     Eigen::Vector4d(lambda_n, -rho * 0.6, rho * 0.8, 0.0)});
+    // pure spin (c_T = 0): Λ_T = 0, Λ_τ = -sign(c_τ) R̄ρ (|c_τ| = 5 > g_τ R̄ρ = 3.6)
+    cases.push_back({Eigen::Vector4d(-3.0, 0.0, 0.0, 5.0),
+                     Eigen::Vector4d(lambda_n, 0.0, 0.0, -rbar * rho)});
+    // R̄ c_τ = 4 is comparable to |c_T| = 4: both friction components matter
+    const Eigen::Vector4d spin_and_slide(-3.0, 2.4, -3.2, 200.0);
+    if (set == FrictionSet::kCylinder) {
+      // C_F is a product: the disk and the interval separately
+      cases.push_back({spin_and_slide, Eigen::Vector4d(lambda_n, -rho * 0.6, rho * 0.8, -rbar * rho)});
+    } else if (set != FrictionSet::kExact) {
+      // E_F: Λ_k = -c_k / (g_k + ν m_k) with m = (1, 1, 1/R̄²)/ρ² and ν > 0 on the boundary
+      const auto point = [&](double nu) {
+        const double t = 1.0 / (g[1] + nu / (rho * rho));
+        const double s = 1.0 / (g[3] + nu / (rbar * rbar * rho * rho));
+        return Eigen::Vector4d(lambda_n, -spin_and_slide[1] * t, -spin_and_slide[2] * t,
+                               -spin_and_slide[3] * s);
+      };
+      const auto level = [&](double nu) {
+        const Eigen::Vector4d p = point(nu);
+        return std::pow(p.segment<2>(1).norm() / rho, 2) + std::pow(p[3] / (rbar * rho), 2);
+      };
+      double lo = 0.0;
+      double hi = 1.0;
+      while (level(hi) > 1.0) hi *= 2.0;
+      for (int k = 0; k < 200; ++k) (level(0.5 * (lo + hi)) > 1.0 ? lo : hi) = 0.5 * (lo + hi);
+      cases.push_back({spin_and_slide, point(0.5 * (lo + hi))});
+    }
+    for (const auto& [c, expected] : cases) {
+      for (SolverType type : kAllSolverTypes) {
+        ContactSolver solver;
+        Eigen::VectorXd lambda = Eigen::VectorXd::Zero(4);
+        const ContactProblem problem = SingleContact(law, g, c);
+        const SolverStatistics stats = solver.Solve(problem, Tight(type), &lambda);
+        ASSERT_TRUE(stats.converged) << FrictionSetName(set) << " " << SolverTypeName(type);
+        EXPECT_TRUE(NearSolution(problem, lambda, expected, 1e-9))
+            << FrictionSetName(set) << " " << SolverTypeName(type) << " c = " << c.transpose();
+        EXPECT_TRUE(stats.friction_projected[0]);
+        EXPECT_TRUE(SatisfiesInclusion(problem, lambda, 1e-8))
+            << FrictionSetName(set) << " " << SolverTypeName(type) << " c = " << c.transpose()
+            << " Λ = " << lambda.transpose();
+      }
+    }
+    // coupled slide and spin on B_F: no closed form, the inclusion is checked independently
+    if (set == FrictionSet::kExact) {
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(4);
+      const ContactProblem problem = SingleContact(law, g, spin_and_slide);
+      ASSERT_TRUE(solver.Solve(problem, Tight(SolverType::kModifiedJacobi), &lambda).converged);
+      EXPECT_TRUE(SatisfiesInclusion(problem, lambda, 1e-7));
+      EXPECT_GT(lambda.segment<2>(1).norm(), 0.1 * rho);
+      EXPECT_GT(std::abs(lambda[3]), 0.1 * rbar * rho);
+    }
+  }
+}
+
+TEST(SingleContact, FrictionlessContactHasOneComponent) {
+  const ContactLaw law = MakeLaw(FrictionSet::kExact, 0.0, 0.05);
+  ASSERT_EQ(ContactDimension(law), 1);
+  for (SolverType type : kAllSolverTypes) {
+    ContactSolver solver;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(1);
+    solver.Solve(SingleContact(law, Eigen::VectorXd::Constant(1, 4.0), Eigen::VectorXd::Constant(1, -3.0)),
+                 Tight(type), &lambda);
+    EXPECT_DOUBLE_EQ(lambda[0], 0.75);
+    solver.Solve(SingleContact(law, Eigen::VectorXd::Constant(1, 4.0), Eigen::VectorXd::Constant(1, 3.0)),
+                 Tight(type), &lambda);
+    EXPECT_EQ(lambda[0], 0.0);
+  }
+}
+
+TEST(SingleContact, FrictionRadiusUsesTheNewNormalPercussion) {
+  // One iteration from Λ = 0: Λ_N¹ = -r c_N > 0 and the friction set already has radius μΛ_N¹
+  // (with the old Λ_N = 0 it would be the point 0). G = I, so r = α = 1.
+  const ContactLaw law = MakeLaw(FrictionSet::kCoulomb, 0.5, 0.0);
+  SolverOptions options = Tight(SolverType::kModifiedJacobi);
+  options.max_iterations = 1;
+  ContactSolver solver;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(3);
+  solver.Solve(SingleContact(law, Eigen::Vector3d::Ones(), Eigen::Vector3d(-2.0, 30.0, -40.0)),
+               options, &lambda);
+  EXPECT_DOUBLE_EQ(lambda[0], 2.0);
+  EXPECT_NEAR(lambda[1], -1.0 * 0.6, 1e-15);
+  EXPECT_NEAR(lambda[2], 1.0 * 0.8, 1e-15);
+}
+
+TEST(FrictionlessContacts, TwoCoupledContactsMatchTheEnumeratedLcp) {
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const ContactLaw law = MakeLaw(FrictionSet::kSphere, 0.0, 0.0);
+  int gauss_seidel_faster = 0;
+  int interior = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    ContactProblem problem;
+    problem.contacts = {{0, law}, {1, law}};
+    const double coupling = 0.9 * unit(rng);
+    problem.G = Eigen::Matrix2d{{1.0, coupling}, {coupling, 1.0}} * (1.0 + unit(rng) * 0.5);
+    problem.c = Eigen::Vector2d(unit(rng), unit(rng));
+    // the LCP 0 ≤ Λ ⊥ GΛ + c ≥ 0 by enumeration of the four active sets
+    Eigen::Vector2d expected = Eigen::Vector2d::Constant(std::nan(""));
+    for (int active = 0; active < 4; ++active) {
+      Eigen::Vector2d candidate = Eigen::Vector2d::Zero();
+      if (active == 3) {
+        candidate = problem.G.ldlt().solve(-problem.c);
+      } else if (active > 0) {
+        const int k = active - 1;
+        candidate[k] = -problem.c[k] / problem.G(k, k);
+      }
+      const Eigen::Vector2d xi = problem.G * candidate + problem.c;
+      if ((candidate.array() >= 0).all() && (xi.array() >= -1e-14).all()) expected = candidate;
+    }
+    ASSERT_TRUE(expected.allFinite());
+    int iterations[2] = {0, 0};
+    for (SolverType type : kAllSolverTypes) {
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(2);
+      const SolverStatistics stats = solver.Solve(problem, Tight(type), &lambda);
+      ASSERT_TRUE(stats.converged);
+      EXPECT_LT((lambda - expected).norm(), 1e-11) << SolverTypeName(type);
+      if (type == SolverType::kModifiedJacobi) iterations[0] = stats.iterations;
+      if (type == SolverType::kGaussSeidel) iterations[1] = stats.iterations;
+    }
+    // both contacts closed: a linear system where Gauss-Seidel converges at the square of the
+    // Jacobi rate (2 × 2, consistently ordered)
+    if ((expected.array() > 0).all() && std::abs(coupling) > 0.3) {
+      ++interior;
+      gauss_seidel_faster += iterations[1] < iterations[0] ? 1 : 0;
+    }
+  }
+  EXPECT_GT(interior, 3);
+  EXPECT_EQ(gauss_seidel_faster, interior);
+}
+
+// ============================== coupled problems ==============================
+
+TEST(ConstructedProblems, EverySchemeFindsTheConstructedSolution) {
+  std::mt19937_64 rng(kSeed + 1);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int m = 1 + trial % 3;
+    const Constructed constructed = Construct(RandomLaws(m, rng), RandomRegimes(m, rng), rng);
+    for (SolverType type : kAllSolverTypes) {
+      const SolverOptions options = Convergent(type, constructed.problem);
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(constructed.solution.size());
+      const SolverStatistics stats = solver.Solve(constructed.problem, options, &lambda);
+      ASSERT_TRUE(stats.converged) << "trial " << trial << " " << SolverTypeName(type)
+                                   << " residual " << stats.residual << ": "
+                                   << Describe(constructed.problem, constructed.regimes);
+      EXPECT_TRUE(NearSolution(constructed.problem, lambda, constructed.solution, 1e-8))
+          << "trial " << trial << " " << SolverTypeName(type);
+      EXPECT_TRUE(SatisfiesInclusion(constructed.problem, lambda, 1e-7)) << "trial " << trial;
+      for (int i = 0; i < m; ++i) {
+        const Regime regime = constructed.regimes[i];
+        EXPECT_EQ(stats.normal_projected[i], regime == Regime::kSeparated);
+        if (ContactDimension(constructed.problem.contacts[i].law) > 1) {
+          EXPECT_EQ(stats.friction_projected[i], regime != Regime::kSticking)
+              << "trial " << trial << " contact " << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(ConstructedProblems, WarmStartFromTheSolutionStopsAfterOneIteration) {
+  std::mt19937_64 rng(kSeed + 2);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int m = 1 + trial % 3;
+    const Constructed constructed = Construct(RandomLaws(m, rng), RandomRegimes(m, rng), rng);
+    for (SolverType type : kAllSolverTypes) {
+      SolverOptions options = Convergent(type, constructed.problem);
+      options.tolerance_rel = 1e-10;
+      ContactSolver solver;
+      Eigen::VectorXd lambda = constructed.solution;
+      const SolverStatistics stats = solver.Solve(constructed.problem, options, &lambda);
+      EXPECT_TRUE(stats.converged);
+      EXPECT_EQ(stats.iterations, 1) << "trial " << trial << " " << SolverTypeName(type) << ": "
+                                     << Describe(constructed.problem, constructed.regimes);
+    }
+  }
+}
+
+// Random problems without a known solution: velocities and gravity on the chain of bodies.
+ContactProblem RandomProblem(const std::vector<ContactLaw>& laws, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  ContactProblem problem;
+  problem.G = ChainDelassus(laws, rng);
+  int offset = 0;
+  for (const ContactLaw& law : laws) {
+    problem.contacts.push_back({offset, law});
+    offset += ContactDimension(law);
+  }
+  problem.c.resize(offset);
+  for (int k = 0; k < offset; ++k) problem.c[k] = normal(rng);
+  // mostly approaching normals
+  for (const ContactBlock& contact : problem.contacts) {
+    problem.c[contact.offset] = -std::abs(problem.c[contact.offset]) + 0.2;
+  }
+  return problem;
+}
+
+TEST(RandomProblems, JacobiModifiedJacobiAndGaussSeidelAgree) {
+  std::mt19937_64 rng(kSeed + 3);
+  int sliding = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int m = 1 + trial % 3;
+    const ContactProblem problem = RandomProblem(RandomLaws(m, rng), rng);
+    Eigen::VectorXd reference;
+    for (SolverType type : kAllSolverTypes) {
+      ContactSolver solver;
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(problem.c.size());
+      const SolverStatistics stats = solver.Solve(problem, Convergent(type, problem), &lambda);
+      ASSERT_TRUE(stats.converged) << "trial " << trial << " " << SolverTypeName(type) << ": "
+                                   << Describe(problem);
+      EXPECT_TRUE(SatisfiesInclusion(problem, lambda, 1e-7))
+          << "trial " << trial << " " << SolverTypeName(type);
+      if (type == SolverType::kJacobi) {
+        reference = lambda;
+        for (bool projected : stats.friction_projected) sliding += projected ? 1 : 0;
+      } else {
+        EXPECT_TRUE(NearSolution(problem, lambda, reference, 1e-8))
+            << "trial " << trial << " " << SolverTypeName(type);
+      }
+    }
+  }
+  EXPECT_GT(sliding, 10);
+}
+
+// ============================== the paper's central claim ==============================
+
+TEST(CentralClaim, EllipsoidDirectlyAndSphereThroughTheTransformationAgree) {
+  std::mt19937_64 rng(kSeed + 4);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int on_boundary = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int m = 1 + trial % 3;
+    std::vector<ContactLaw> laws;
+    for (int i = 0; i < m; ++i) {
+      laws.push_back(MakeLaw(FrictionSet::kEllipsoid, 0.1 + 0.5 * unit(rng), 0.005 + 0.1 * unit(rng)));
+    }
+    ContactProblem ellipsoid = trial % 2 == 0 ? RandomProblem(laws, rng)
+                                              : Construct(laws, RandomRegimes(m, rng), rng).problem;
+    ContactProblem sphere = ellipsoid;
+    for (ContactBlock& contact : sphere.contacts) contact.law.friction_set = FrictionSet::kSphere;
+    double min_rbar = 1.0;
+    for (const ContactLaw& law : laws) min_rbar = std::min(min_rbar, law.rbar);
+    for (SolverType type : kAllSolverTypes) {
+      // (43) on S_F needs ~ max/min of diag(Ĝ_ii) ∝ 1/R̄² iterations (see BadlyScaled): only
+      // the better scaled trials for it
+      if (type == SolverType::kJacobi && min_rbar < 0.03) continue;
+      ContactSolver solver;
+      Eigen::VectorXd direct = Eigen::VectorXd::Zero(ellipsoid.c.size());
+      Eigen::VectorXd transformed = direct;
+      const SolverOptions options = Convergent(type, ellipsoid);
+      const SolverStatistics direct_stats = solver.Solve(ellipsoid, options, &direct);
+      const SolverStatistics transformed_stats = solver.Solve(sphere, options, &transformed);
+      ASSERT_TRUE(direct_stats.converged && transformed_stats.converged)
+          << "trial " << trial << " " << SolverTypeName(type) << ": " << Describe(ellipsoid)
+          << " iterations " << direct_stats.iterations << " / " << transformed_stats.iterations;
+      EXPECT_TRUE(NearSolution(ellipsoid, transformed, direct, 1e-9))
+          << "trial " << trial << " " << SolverTypeName(type);
+      EXPECT_EQ(direct_stats.friction_projected, transformed_stats.friction_projected);
+      for (bool projected : direct_stats.friction_projected) on_boundary += projected ? 1 : 0;
+    }
+  }
+  EXPECT_GT(on_boundary, 30);
+}
+
+// ============================== (43) against (46) ==============================
+
+TEST(BadlyScaled, ModifiedIterationNeedsFarFewerIterations) {
+  // The sphere law maps Λ_τ to Λ̂_τ = Λ_τ/R̄, so Ĝ_ττ = R̄²G_ττ: R̄ is chosen to make the diagonal of
+  // Ĝ_ii span 1e4. A sticking contact (non-projecting) is where (46) takes effect.
+  std::mt19937_64 rng(kSeed + 5);
+  for (int trial = 0; trial < 5; ++trial) {
+    std::vector<ContactLaw> laws = {MakeLaw(FrictionSet::kSphere, 0.4, 1.0)};
+    Constructed constructed = Construct(laws, {Regime::kSticking}, rng);
+    ContactProblem& problem = constructed.problem;
+    const Eigen::Vector4d diagonal = problem.G.diagonal();
+    const double rbar = 1e-2 * std::sqrt(diagonal.head<3>().maxCoeff() / diagonal[3]);
+    problem.contacts[0].law.rbar = rbar;
+    // rebuild the sticking solution inside the rescaled set: Λ_τ scales with R̄
+    const Eigen::VectorXd xi = problem.G * constructed.solution + problem.c;
+    constructed.solution[3] *= rbar;
+    problem.c = xi - problem.G * constructed.solution;
+    const Eigen::Vector4d a = ContactMapDiagonal(problem.contacts[0].law);
+    const Eigen::Vector4d g_hat_diagonal = a.cwiseProduct(a).cwiseProduct(diagonal);
+    ASSERT_NEAR(g_hat_diagonal.maxCoeff() / g_hat_diagonal.minCoeff(), 1e4, 1e-6 * 1e4);
+
+    SolverOptions options = Tight(SolverType::kJacobi);
+    options.tolerance_rel = 1e-10;
+    options.max_iterations = 1000000;
+    ContactSolver solver;
+    Eigen::VectorXd lambda_43 = Eigen::VectorXd::Zero(4);
+    const SolverStatistics stats_43 = solver.Solve(problem, options, &lambda_43);
+    options.type = SolverType::kModifiedJacobi;
+    Eigen::VectorXd lambda_46 = Eigen::VectorXd::Zero(4);
+    const SolverStatistics stats_46 = solver.Solve(problem, options, &lambda_46);
+    ASSERT_TRUE(stats_43.converged && stats_46.converged);
+    EXPECT_TRUE(NearSolution(problem, lambda_46, constructed.solution, 1e-7));
+    EXPECT_TRUE(NearSolution(problem, lambda_43, constructed.solution, 1e-5));
+    EXPECT_GE(stats_43.iterations, 10 * stats_46.iterations)
+        << "(43): " << stats_43.iterations << ", (46): " << stats_46.iterations;
+    std::printf("badly scaled trial %d: (43) %d iterations, (46) %d iterations\n", trial,
+                stats_43.iterations, stats_46.iterations);
+  }
+}
+
+TEST(BadlyScaled, ModifiedIterationSolvesADiagonalStictionProblemInOneStep) {
+  // ellipsoid law on its original set: G_ττ = 1e4 G_NN. (43) steps r = 1/max_k G_kk for every
+  // component, so Λ_N converges at 1 - 1e-4 per iteration; (46) steps each component by 1/G_kk,
+  // which solves a diagonal problem exactly in one iteration (the second only confirms it).
+  const ContactLaw law = MakeLaw(FrictionSet::kEllipsoid, 0.3, 0.02);
+  const Eigen::Vector4d g(1.0, 2.0, 2.0, 1e4);
+  const Eigen::Vector4d expected(1.0, 0.1, -0.05, 0.001);
+  const ContactProblem problem = SingleContact(law, g, -g.cwiseProduct(expected));
+  SolverOptions options = Tight(SolverType::kModifiedJacobi);
+  options.tolerance_rel = 1e-10;
+  for (SolverType type : {SolverType::kModifiedJacobi, SolverType::kGaussSeidel}) {
+    options.type = type;
+    ContactSolver solver;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(4);
+    const SolverStatistics stats = solver.Solve(problem, options, &lambda);
+    EXPECT_EQ(stats.iterations, 2) << SolverTypeName(type);
+    EXPECT_LT((lambda - expected).norm(), 1e-14);
+  }
+  options.type = SolverType::kJacobi;
+  ContactSolver solver;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(4);
+  const SolverStatistics stats = solver.Solve(problem, options, &lambda);
+  EXPECT_TRUE(stats.converged);
+  EXPECT_GT(stats.iterations, 10000);
+}
+
+// ============================== API contract ==============================
+
+TEST(SolverContract, OneIterationWithZeroToleranceIsFiniteAndUnconverged) {
+  const ContactLaw law = MakeLaw(FrictionSet::kSphere, 0.3, 0.02);
+  const ContactProblem problem =
+      SingleContact(law, Eigen::Vector4d(2.0, 3.0, 3.0, 400.0), Eigen::Vector4d(-1.0, 0.5, 0.2, 3.0));
+  for (SolverType type : kAllSolverTypes) {
+    SolverOptions options;
+    options.type = type;
+    options.tolerance_abs = 0.0;
+    options.tolerance_rel = 0.0;
+    options.max_iterations = 1;
+    ContactSolver solver;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(4);
+    const SolverStatistics stats = solver.Solve(problem, options, &lambda);
+    EXPECT_FALSE(stats.converged);
+    EXPECT_EQ(stats.iterations, 1);
+    EXPECT_TRUE(lambda.allFinite());
+    EXPECT_GT(lambda[0], 0.0);
+    EXPECT_TRUE(std::isfinite(stats.max_change));
+    EXPECT_GT(stats.max_change, 0.0);
+    EXPECT_GT(stats.residual, 1.0);
+  }
+}
+
+TEST(SolverContract, DivergenceStopsWithTheLastFiniteIterate) {
+  // α = 1.99 violates the convergence condition of contact_solver.h on coupled problems: some
+  // Jacobi iterations grow without bound. The solver must stop there and return finite numbers.
+  std::mt19937_64 rng(kSeed + 7);
+  int diverged = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const ContactProblem problem = RandomProblem(RandomLaws(2 + trial % 2, rng), rng);
+    SolverOptions options = Tight(SolverType::kModifiedJacobi);
+    options.relaxation = 1.99;
+    options.max_iterations = 5000;
+    ContactSolver solver;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(problem.c.size());
+    const SolverStatistics stats = solver.Solve(problem, options, &lambda);
+    EXPECT_TRUE(lambda.allFinite()) << "trial " << trial;
+    if (std::isinf(stats.max_change)) {
+      ++diverged;
+      EXPECT_FALSE(stats.converged);
+      EXPECT_TRUE(std::isinf(stats.residual));
+      EXPECT_LT(stats.iterations, options.max_iterations);
+    }
+  }
+  EXPECT_GT(diverged, 0);
+}
+
+TEST(SolverContract, ResidualFollowsTheDocumentedStoppingRule) {
+  const ContactLaw law = MakeLaw(FrictionSet::kCoulomb, 0.3, 0.0);
+  const ContactProblem problem =
+      SingleContact(law, Eigen::Vector3d(2.0, 3.0, 3.0), Eigen::Vector3d(-1.0, 0.05, 0.02));
+  SolverOptions options = Tight(SolverType::kModifiedJacobi);
+  options.tolerance_rel = 1e-6;
+  options.tolerance_abs = 1e-9;
+  ContactSolver solver;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(3);
+  const SolverStatistics stats = solver.Solve(problem, options, &lambda);
+  ASSERT_TRUE(stats.converged);
+  EXPECT_LE(stats.residual, 1.0);
+  // run one iteration less from the same start: not converged, residual above 1
+  if (stats.iterations > 1) {
+    options.max_iterations = stats.iterations - 1;
+    Eigen::VectorXd partial = Eigen::VectorXd::Zero(3);
+    const SolverStatistics shorter = solver.Solve(problem, options, &partial);
+    EXPECT_FALSE(shorter.converged);
+    EXPECT_GT(shorter.residual, 1.0);
+  }
+}
+
+std::string InvalidArgumentMessage(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "no std::invalid_argument";
+}
+
+TEST(SolverContract, InvalidOptionsNameTheField) {
+  const auto check = [](const SolverOptions& options, const std::string& field,
+                        const std::string& range) {
+    const std::string message = InvalidArgumentMessage([&] { ValidateSolverOptions(options); });
+    EXPECT_NE(message.find(field), std::string::npos) << message;
+    EXPECT_NE(message.find(range), std::string::npos) << message;
+    // Solve validates too, before touching anything
+    ContactSolver solver;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(1);
+    const ContactProblem problem = SingleContact(MakeLaw(FrictionSet::kSphere, 0.0, 0.0),
+                                                 Eigen::VectorXd::Ones(1), -Eigen::VectorXd::Ones(1));
+    EXPECT_THROW(solver.Solve(problem, options, &lambda), std::invalid_argument);
+    EXPECT_EQ(lambda[0], 0.0);
+  };
+  SolverOptions options;
+  EXPECT_NO_THROW(ValidateSolverOptions(options));
+  for (double bad : {-1e-9, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    options = SolverOptions();
+    options.tolerance_rel = bad;
+    check(options, "tolerance_rel", ">= 0");
+    options = SolverOptions();
+    options.tolerance_abs = bad;
+    check(options, "tolerance_abs", ">= 0");
+  }
+  for (int bad : {0, -5}) {
+    options = SolverOptions();
+    options.max_iterations = bad;
+    check(options, "max_iterations", ">= 1");
+  }
+  for (double bad : {0.0, 2.0, -0.5, 3.0, std::nan("")}) {
+    options = SolverOptions();
+    options.relaxation = bad;
+    check(options, "relaxation", "(0, 2)");
+  }
+  options = SolverOptions();
+  options.relaxation = 1.999;
+  EXPECT_NO_THROW(ValidateSolverOptions(options));
+  options.tolerance_rel = 0.0;
+  options.tolerance_abs = 0.0;
+  EXPECT_NO_THROW(ValidateSolverOptions(options));
+}
+
+TEST(SolverContract, InvalidProblemsAreRejected) {
+  const ContactLaw law = MakeLaw(FrictionSet::kSphere, 0.3, 0.02);  // dim 4
+  const ContactProblem good = SingleContact(law, Eigen::Vector4d::Ones(), -Eigen::Vector4d::Ones());
+  EXPECT_NO_THROW(ValidateContactProblem(good));
+  const auto rejects = [](const ContactProblem& problem, const std::string& field) {
+    const std::string message = InvalidArgumentMessage([&] { ValidateContactProblem(problem); });
+    EXPECT_NE(message.find(field), std::string::npos) << message;
+  };
+  ContactProblem bad = good;
+  bad.c = Eigen::VectorXd::Ones(3);
+  rejects(bad, "ContactProblem.G");
+  bad = good;
+  bad.G(1, 2) = std::nan("");
+  rejects(bad, "ContactProblem.G");
+  bad = good;
+  bad.c[3] = std::numeric_limits<double>::infinity();
+  rejects(bad, "ContactProblem.c");
+  bad = good;
+  bad.G(2, 2) = 0.0;
+  rejects(bad, "diagonal");
+  bad = good;
+  bad.contacts[0].offset = 1;
+  rejects(bad, "offset");
+  bad = good;
+  bad.contacts[0].law.mu = -0.1;
+  rejects(bad, "law.mu");
+  bad = good;
+  bad.contacts[0].law.rbar = std::nan("");
+  rejects(bad, "law.rbar");
+  bad = good;
+  bad.contacts[0].law.rbar = 0.0;  // now dim 3, but G and c have 4 rows
+  rejects(bad, "sum of the contact dimensions");
+
+  ContactSolver solver;
+  Eigen::VectorXd wrong_size = Eigen::VectorXd::Zero(3);
+  EXPECT_NE(InvalidArgumentMessage([&] {
+              solver.Solve(good, SolverOptions(), &wrong_size);
+            }).find("warm start"),
+            std::string::npos);
+  Eigen::VectorXd not_finite = Eigen::Vector4d(0, std::nan(""), 0, 0);
+  EXPECT_THROW(solver.Solve(good, SolverOptions(), &not_finite), std::invalid_argument);
+  EXPECT_THROW(solver.Solve(good, SolverOptions(), nullptr), std::invalid_argument);
+}
+
+TEST(SolverContract, EmptyProblemConvergesImmediately) {
+  ContactSolver solver;
+  Eigen::VectorXd lambda(0);
+  const SolverStatistics stats = solver.Solve(ContactProblem(), SolverOptions(), &lambda);
+  EXPECT_TRUE(stats.converged);
+  EXPECT_EQ(stats.iterations, 0);
+}
+
+TEST(SolverContract, NoHeapAllocationOnceTheSizeHasBeenSeen) {
+  std::mt19937_64 rng(kSeed + 6);
+  std::vector<ContactLaw> laws = {MakeLaw(FrictionSet::kSphere, 0.3, 0.02),
+                                  MakeLaw(FrictionSet::kEllipsoid, 0.3, 0.02),
+                                  MakeLaw(FrictionSet::kCoulomb, 0.3, 0.0)};
+  const ContactProblem large = RandomProblem(laws, rng);
+  laws.pop_back();
+  const ContactProblem small = RandomProblem(laws, rng);
+  for (SolverType type : kAllSolverTypes) {
+    ContactSolver solver;
+    SolverStatistics stats;
+    Eigen::VectorXd lambda_large = Eigen::VectorXd::Zero(large.c.size());
+    Eigen::VectorXd lambda_small = Eigen::VectorXd::Zero(small.c.size());
+    const SolverOptions options = Tight(type);
+    solver.Solve(large, options, &lambda_large, &stats);  // sizes the workspace
+    const long before = g_heap_allocations.load();
+    solver.Solve(small, options, &lambda_small, &stats);
+    lambda_large.setZero();
+    solver.Solve(large, options, &lambda_large, &stats);
+    const long after = g_heap_allocations.load();
+    EXPECT_EQ(after - before, 0) << SolverTypeName(type);
+    EXPECT_TRUE(stats.converged);
+  }
+  // the counter does count (a vector allocates)
+  const long before = g_heap_allocations.load();
+  std::vector<double> probe(1000);
+  EXPECT_GT(g_heap_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace nonsmooth_sim
