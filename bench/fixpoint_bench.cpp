@@ -23,6 +23,11 @@
 // through the six problems, so the time is the mean ns per converged solve. Counter
 // "iterations": mean fixed-point iterations per solve. A solve that does not converge stops the
 // benchmark with an error.
+//
+// Variants: BM_Fixpoint/<law> runs the default SolverOptions::map_drilling_sets = true (sphere,
+// exact and cylinder iterated on A⁻¹D, (40)-(47); ellipsoid on E_F itself, (37)); exact_direct
+// and cylinder_direct set it to false and iterate B_F and C_F on the original sets (37), as the
+// paper's B_F timing.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
@@ -152,8 +157,9 @@ std::vector<Configuration> Configurations() {
   return configurations;
 }
 
-SolverOptions BenchmarkOptions() {
+SolverOptions BenchmarkOptions(bool map_drilling_sets) {
   SolverOptions options;
+  options.map_drilling_sets = map_drilling_sets;
   options.type = SolverType::kModifiedJacobi;
   options.tolerance_rel = 1e-10;
   options.tolerance_abs = 1e-20;
@@ -162,14 +168,14 @@ SolverOptions BenchmarkOptions() {
   return options;
 }
 
-void BM_Fixpoint(benchmark::State& state, FrictionSet set) {
+void BM_Fixpoint(benchmark::State& state, FrictionSet set, bool map_drilling_sets) {
   std::vector<ContactProblem> problems;
   for (const Configuration& configuration : Configurations()) {
     problems.push_back(MakeProblem(configuration, set));
   }
   std::vector<Eigen::VectorXd> lambdas;
   for (const ContactProblem& problem : problems) lambdas.emplace_back(problem.c.size());
-  const SolverOptions options = BenchmarkOptions();
+  const SolverOptions options = BenchmarkOptions(map_drilling_sets);
   ContactSolver solver;
   SolverStatistics statistics;
   // one untimed pass: every problem must converge
@@ -193,11 +199,14 @@ void BM_Fixpoint(benchmark::State& state, FrictionSet set) {
   state.counters["iterations"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
 }
 
-// Names as in FrictionSetName(): BM_Fixpoint/coulomb, ..., BM_Fixpoint/exact.
-BENCHMARK_CAPTURE(BM_Fixpoint, coulomb, FrictionSet::kCoulomb);
-BENCHMARK_CAPTURE(BM_Fixpoint, cylinder, FrictionSet::kCylinder);
-BENCHMARK_CAPTURE(BM_Fixpoint, ellipsoid, FrictionSet::kEllipsoid);
-BENCHMARK_CAPTURE(BM_Fixpoint, sphere, FrictionSet::kSphere);
-BENCHMARK_CAPTURE(BM_Fixpoint, exact, FrictionSet::kExact);
+// Names as in FrictionSetName(): BM_Fixpoint/coulomb, ..., BM_Fixpoint/exact (default options),
+// plus BM_Fixpoint/exact_direct and BM_Fixpoint/cylinder_direct (map_drilling_sets = false).
+BENCHMARK_CAPTURE(BM_Fixpoint, coulomb, FrictionSet::kCoulomb, true);
+BENCHMARK_CAPTURE(BM_Fixpoint, cylinder, FrictionSet::kCylinder, true);
+BENCHMARK_CAPTURE(BM_Fixpoint, ellipsoid, FrictionSet::kEllipsoid, true);
+BENCHMARK_CAPTURE(BM_Fixpoint, sphere, FrictionSet::kSphere, true);
+BENCHMARK_CAPTURE(BM_Fixpoint, exact, FrictionSet::kExact, true);
+BENCHMARK_CAPTURE(BM_Fixpoint, exact_direct, FrictionSet::kExact, false);
+BENCHMARK_CAPTURE(BM_Fixpoint, cylinder_direct, FrictionSet::kCylinder, false);
 
 }  // namespace

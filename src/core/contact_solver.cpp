@@ -35,13 +35,19 @@ bool IsKnown(FrictionSet set) { return FrictionSetName(set) != "unknown"; }
 bool IsKnown(SolverType type) { return SolverTypeName(type) != "unknown"; }
 
 // Euclidean prox onto the 3-D friction set (T1, T2, τ) of a 4-component contact, in the
-// coordinates the contact is iterated in (Λ̂ for sphere, Λ otherwise).
-Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, double rbar) {
+// coordinates the contact is iterated in (contact_solver.h, table of the iterated sets): Λ̂ = A⁻¹Λ
+// for sphere and, with map_drilling_sets, exact and cylinder; Λ otherwise. `set_rbar` is the R̄
+// of the iterated set: 1 for A⁻¹B_F and A⁻¹C_F, the law's R̄ for the original sets.
+Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, double set_rbar) {
   switch (set) {
-    case FrictionSet::kCylinder: return ProxCylinder(z, radius, rbar);        // C_F (54)
-    case FrictionSet::kEllipsoid: return ProxEllipsoid(z, radius, rbar);      // E_F (55), (37)
-    case FrictionSet::kSphere: return ProxBall(z, radius);                    // S_F (57)-(59), (43)
-    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, rbar);   // B_F (51)-(53)
+    // C_F (54), (37); or A⁻¹C_F = C_F with R̄ = 1, (40)-(47)
+    case FrictionSet::kCylinder: return ProxCylinder(z, radius, set_rbar);
+    // E_F (55) itself, (37): the paper's untransformed reference
+    case FrictionSet::kEllipsoid: return ProxEllipsoid(z, radius, set_rbar);
+    // S_F = A⁻¹E_F (57)-(59), (43)
+    case FrictionSet::kSphere: return ProxBall(z, radius);
+    // B_F (51)-(53), (37); or A⁻¹B_F = B_F with R̄ = 1, (40)-(47)
+    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, set_rbar);
     case FrictionSet::kCoulomb: break;  // 3-component contacts use the disk, see UpdateContact
   }
   const Prox2 disk = ProxDisk(z.head<2>(), radius);
@@ -95,9 +101,9 @@ ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
         &update.friction_projected);
     return update;
   }
-  // (T1, T2, τ) on the law's set (original coordinates, or Λ̂ on S_F for sphere)
+  // (T1, T2, τ) on the law's set in the iterated coordinates (Λ̂ = A⁻¹Λ or Λ)
   const auto set = [&w, radius](const Eigen::Vector3d& z) {
-    return ProxFriction(w.set, z, radius, w.rbar);
+    return ProxFriction(w.set, z, radius, w.set_rbar);
   };
   update.next.tail<3>() = UpdateFriction<kModified, Eigen::Vector3d>(
       lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected);
@@ -252,10 +258,13 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     w.offset = problem.contacts[i].offset;
     w.dim = ContactDimension(law);
     w.mu = law.mu;
-    w.rbar = law.rbar;
     // with R̄ = 0 every law degenerates to the coulomb disk
     w.set = w.dim == 4 ? law.friction_set : FrictionSet::kCoulomb;
-    w.scale = ContactMapDiagonal(law);
+    // A_i: (56) for sphere, and for exact and cylinder if options.map_drilling_sets (40)-(47)
+    w.scale = ContactMapDiagonal(law, options);
+    // B_F, C_F and E_F scale linearly along τ: A⁻¹ maps the set with R̄ to the one with R̄/a_τ
+    // (exactly 1 where a_τ = R̄)
+    w.set_rbar = law.rbar / w.scale[3];
     w.normal_projected = false;
     w.friction_projected = false;
     // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), padded with zeros (scalar loops: dim ≤ 4)

@@ -14,9 +14,29 @@
 // and (37) reads Λ^{ν+1} = prox_C(Λ^ν - r (GΛ^ν + c)).
 //
 // Every contact is iterated in the coordinates Λ̂_i = A_i⁻¹Λ_i with Ĝ_ij = A_iᵀ G_ij A_j and
-// ĉ_i = A_iᵀ c_i (41) (transformation.h): A_i = diag(1, 1, 1, R̄) (56) for the `sphere` law, whose
-// friction set is then the ball S_F = A⁻¹E_F (57)-(59); A_i = I for all other laws, which are
-// iterated on their original sets (37). The result is mapped back, Λ_i = A_iΛ̂_i (47).
+// ĉ_i = A_iᵀ c_i (41) (transformation.h, ContactMapDiagonal), on the set Ĉ_i = A_i⁻¹C_i, and the
+// result is mapped back, Λ_i = A_iΛ̂_i (47). A_i = diag(1, 1, 1, a_τ) on (N, T1, T2, τ):
+//
+//   law        iterated on                                 a_τ  equations
+//   coulomb    the disk ||Λ_T|| ≤ μΛ_N                     -    (37)
+//   sphere     S_F = A⁻¹E_F (57)-(59)                      R̄    (40)-(47), A of (56)
+//   ellipsoid  E_F (55) itself                             1    (37): by definition the paper's
+//                                                                untransformed reference
+//   exact      map_drilling_sets: A⁻¹B_F = B_F with R̄ = 1  R̄    (40)-(47), A of (56)
+//              otherwise:         B_F (51)-(53) itself     1    (37), the paper's B_F timing
+//   cylinder   map_drilling_sets: A⁻¹C_F = C_F with R̄ = 1  R̄    (40)-(47), A of (56)
+//              otherwise:         C_F (54) itself          1    (37)
+//
+// A contact without a drilling component (μ = 0, or R̄ = 0, or coulomb) has A_i = I and every law
+// is the coulomb disk there. B_F and C_F scale linearly along the drilling axis (b_τ ∝ R̄ in (52),
+// the height R̄μΛ_N in (54)), so A⁻¹ with A of (56) maps them onto the same sets with R̄ = 1, whose
+// Euclidean prox is the exact one (ProxCoulombContensou / ProxCylinder with rbar = 1). By (30)
+// (any convex set, any non-singular A) the mapped iteration has the same solution Λ.
+// Why map: in the projecting (sliding) case every friction component steps r̂ = α/max_k Ĝ_iikk,
+// and the error along the boundary of the set shrinks roughly by ρ/(ρ + r̂|ξ̂_F|) per iteration
+// (ρ = μΛ_N). On the original sets r̂ = α/G_ττ, and for the Tippe-Top G_ττ ≈ 3000 G_TT: the
+// sliding iterates crawl (hundreds to thousands of iterations per step). With A of (56)
+// Ĝ_ττ = R̄²G_ττ ≪ Ĝ_TT, so r̂ = α/max(Ĝ_NN, Ĝ_TT) is ~3000 times larger.
 //
 // Iterations (r̂_i, Ĝ, ĉ as above; for A_i = I the hats drop and (43) is (37)):
 //  - kJacobi, (37)/(43): Λ̂_i^{ν+1} = prox_{Ĉ_i}(Λ̂_i^ν - r̂_i ξ̂_i^ν),  ξ̂_i^ν = Σ_j Ĝ_ij Λ̂_j^ν + ĉ_i,
@@ -33,9 +53,9 @@
 //          otherwise Q = I:  Λ̂_F^{ν+1} = z  (the step of (43));
 //        projecting (Q = I):  Λ̂_F^{ν+1} = prox_{Ĉ_F}(z).
 //    Departure from the paper: (46) takes y whenever z ∈ Ĉ_F. Because the steps α/Ĝ_kk can be
-//    far larger than r̂_F (Ĝ_ττ = R̄²G_ττ is tiny for sphere), y can land far outside the set, the
-//    next iteration projects back, and the iteration 2-cycles on a sliding contact (seen on a
-//    single sphere-law contact of test ConstructedProblems). Accepting y only inside the set
+//    far larger than r̂_F (Ĝ_ττ = R̄²G_ττ is tiny for the mapped laws), y can land far outside the
+//    set, the next iteration projects back, and the iteration 2-cycles on a sliding contact (seen
+//    on a single sphere-law contact of test ConstructedProblems). Accepting y only inside the set
 //    keeps every friction iterate in its set and leaves the fixed points unchanged (Q is
 //    regular in either case).
 //    The fixed point is that of (43) because a block-diagonal R̂_i = diag(1/r̂_N, I/r̂_F) in
@@ -104,6 +124,10 @@ struct SolverOptions {
   double tolerance_abs = 1e-14; ///< absolute tolerance on the change of Λ [N s], finite, ≥ 0
   int max_iterations = 1000;    ///< ≥ 1
   double relaxation = 1.0;      ///< α of (43), in (0, 2)
+  /// Iterate `exact` and `cylinder` on A⁻¹D with A of (56), (40)-(47) (same solution, far fewer
+  /// iterations when sliding); false = on the original sets (37), as the paper's B_F timing.
+  /// `sphere` is always mapped, `ellipsoid` and `coulomb` never (see the table above).
+  bool map_drilling_sets = true;
 };
 
 /// Throws std::invalid_argument naming the offending field and its allowed range.
@@ -146,14 +170,16 @@ namespace internal {
 /// Per-contact data of ContactSolver's iteration, derived once per Solve from the problem and the
 /// options, plus the contact's projection flags of the last iteration. Not part of the API.
 struct ContactWork {
-  Eigen::Vector4d scale = Eigen::Vector4d::Ones();  ///< diagonal of A_i (56), (N, T1, T2, τ)
+  Eigen::Vector4d scale = Eigen::Vector4d::Ones();  ///< diagonal of A_i (N, T1, T2, τ), see above
   Eigen::Vector4d step = Eigen::Vector4d::Zero();   ///< α / Ĝ_iikk (46); 0 where absent
   Eigen::Vector4d tolerance_abs_hat = Eigen::Vector4d::Zero();  ///< tolerance_abs / diag(A_i)
   double r_contact = 0.0;   ///< r̂_i of (43): α / max_k Ĝ_iikk over the whole contact
   double r_normal = 0.0;    ///< α / Ĝ_iiNN: (46) on the normal block
   double r_friction = 0.0;  ///< α / max_{k∈F} Ĝ_iikk: (46) on the friction block
   double mu = 0.0;
-  double rbar = 0.0;
+  /// R̄ of the friction set in the iterated coordinates: R̄/a_τ, i.e. the law's R̄ on an original
+  /// set (37) and 1 on A⁻¹B_F, A⁻¹C_F (40); unused by sphere (S_F) and the disk
+  double set_rbar = 0.0;
   int offset = 0;
   int dim = 1;
   FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact

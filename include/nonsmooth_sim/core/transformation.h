@@ -14,8 +14,10 @@
 //   Λ_i = A_iΛ̂_i                                                                     (47)
 //
 // For Coulomb-Contensou friction, A = diag(1, 1, R̄) (56) on (Λ_T1, Λ_T2, Λ_τ) maps the ball
-// S_F (58) onto the ellipsoid E_F (55): A⁻¹E_F = S_F (57). On a whole contact
-// (Λ_N, Λ_T1, Λ_T2, Λ_τ) it is diag(1, 1, 1, R̄): the normal component is not mapped.
+// S_F (58) onto the ellipsoid E_F (55): A⁻¹E_F = S_F (57). The same A maps the Coulomb-Contensou
+// set B_F (51)-(53) and the cylinder C_F (54) onto themselves with R̄ = 1 (both scale linearly
+// along the drilling axis). On a whole contact (Λ_N, Λ_T1, Λ_T2, Λ_τ) it is diag(1, 1, 1, R̄): the
+// normal component is not mapped.
 //
 // The dense functions take a general non-singular A (cost O(n³) where an inverse is needed); the
 // *Diagonal functions take the diagonal of a diagonal A (cost O(n²)); TransformBlock is the
@@ -33,14 +35,25 @@ namespace nonsmooth_sim {
 /// Throws std::invalid_argument unless rbar is finite and > 0 [m].
 Eigen::Matrix3d ContensouMap(double rbar);
 
-/// Diagonal of A_i over (Λ_N, Λ_T1, Λ_T2, Λ_τ) for a contact with this law: (1, 1, 1, R̄) for the
-/// `sphere` law with a drilling component (ContactDimension = 4), i.e. diag(1, (56)); all ones
-/// otherwise (the other laws are iterated on their original sets, (37)). Entries beyond the
-/// contact's dimension are 1. No validation (see ValidateContactProblem).
+/// Diagonal of A_i over (Λ_N, Λ_T1, Λ_T2, Λ_τ) the solver uses for a contact with this law and
+/// these options (contact_solver.h, table of the iterated sets): (1, 1, 1, R̄), i.e. diag(1, (56)),
+/// for a contact with a drilling component (ContactDimension = 4) whose law is `sphere`
+/// (A⁻¹E_F = S_F (57)), or `exact` / `cylinder` with options.map_drilling_sets (A⁻¹B_F, A⁻¹C_F
+/// = the sets with R̄ = 1); all ones otherwise (iterated on the original set, (37)). Entries
+/// beyond the contact's dimension are 1. No validation (see ValidateContactProblem).
+Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law, const SolverOptions& options);
+
+/// The paper's choice, section 6: only the `sphere` law is mapped, every other law is iterated on
+/// its original set. The same as ContactMapDiagonal(law, options) with
+/// options.map_drilling_sets = false; NOT what the solver does with the default SolverOptions.
 Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law);
 
 /// Stacked diagonal (size n) of the block-diagonal A = diag(A_1, ..., A_m) of a problem, each
-/// block from ContactMapDiagonal. Throws std::invalid_argument for an invalid problem.
+/// block from ContactMapDiagonal(law, options). Throws std::invalid_argument for an invalid
+/// problem.
+Eigen::VectorXd ProblemMapDiagonal(const ContactProblem& problem, const SolverOptions& options);
+
+/// The same with the one-argument ContactMapDiagonal (only `sphere` mapped).
 Eigen::VectorXd ProblemMapDiagonal(const ContactProblem& problem);
 
 // ---- general non-singular A (n × n) -------------------------------------------------------------
