@@ -177,6 +177,8 @@ std::string UsageText() {
     << SolverOptions{}.max_iterations
     << ")\n"
        "  --relaxation ALPHA    alpha of (43), in (0, 2) (default 1)\n"
+       "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
+       "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
        "  --mu MU               friction coefficient of both contacts (default 0.3)\n"
        "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4)\n"
        "  --inclination THETA   initial inclination [rad] in [0, pi] (default 0.1)\n"
@@ -200,6 +202,10 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
       if (arg == "--help" || arg == "-h") return HelpRequest{};
       if (arg == "--quiet") {
         config.quiet = true;
+        continue;
+      }
+      if (arg == "--direct-drilling-sets") {
+        config.options.solver.map_drilling_sets = false;
         continue;
       }
       std::string value;

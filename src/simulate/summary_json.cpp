@@ -29,6 +29,10 @@ class JsonObject {
   }
   void Add(const char* key, long value) { Add(key, static_cast<double>(value)); }
   void Add(const char* key, int value) { Add(key, static_cast<double>(value)); }
+  void Add(const char* key, bool value) {
+    Key(key);
+    text_ += value ? "true" : "false";
+  }
   void Add(const char* key, const std::optional<double>& value) {
     if (value) {
       Add(key, *value);
@@ -79,6 +83,7 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("tolerance_abs", c.options.solver.tolerance_abs);
   json.Add("solver_max_iterations", c.options.solver.max_iterations);
   json.Add("relaxation", c.options.solver.relaxation);
+  json.Add("map_drilling_sets", c.options.solver.map_drilling_sets);
   json.Add("mu", c.parameters.mu);
   json.Add("contact_radius", c.parameters.contact_radius);
   json.Add("inclination_initial", c.initial.inclination);
