@@ -1,0 +1,67 @@
+// Core state -> ROS messages: the one place where messages meet the core. The Fill* functions
+// overwrite a message in place, so that publishing at kHz rates reuses its storage.
+#ifndef NONSMOOTH_SIM_NODE_CONVERSIONS_H_
+#define NONSMOOTH_SIM_NODE_CONVERSIONS_H_
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <ros/time.h>
+#include <tf2_msgs/TFMessage.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <string>
+#include <vector>
+
+#include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/SimulationState.h"
+#include "nonsmooth_sim/core/simulator.h"
+
+namespace nonsmooth_sim::node {
+
+/// ROS stamp of simulated time t ≥ 0: t itself, except ros::TIME_MIN (1 ns) for t = 0, because
+/// ros::Time(0) means "no time yet" to nodes on /use_sim_time (and rosbag refuses it).
+ros::Time StampOf(double sim_time);
+
+/// Names of the TF frames and topics of one scene.
+struct FrameNames {
+  std::string world;                  ///< fixed frame
+  std::vector<std::string> contacts;  ///< per sphere: "<collision name>_contact"
+};
+FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
+
+/// A ROS graph name made of [A-Za-z0-9_] (other characters become '_').
+std::string GraphName(const std::string& name);
+
+/// Pose of the link frame: the body pose composed with the translation -com_in_link.
+geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state);
+
+/// ~state / ~get_state: pose, twist, inclination, energy, Jellett's integral, vertical spin.
+void FillState(const Simulator& sim, bool paused, const std::string& world_frame,
+               SimulationState* msg);
+
+/// ~contacts: every sphere's contact after the last step; forces = percussions / Δt.
+void FillContacts(const Simulator& sim, const StepStatistics& last_step, const FrameNames& frames,
+                  ContactInfoArray* msg);
+
+/// /tf: world → each body's link, and world → a frame at each sphere's contact point (axes of
+/// the world: tangents x, y and normal z, as the core's percussions).
+void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
+                    tf2_msgs::TFMessage* msg);
+
+/// The force λ = Λ/Δt on the body and the drilling torque at contact `sphere`, in its contact
+/// frame (zero for an open contact).
+void FillWrench(const Simulator& sim, int sphere, const FrameNames& frames, const ros::Time& stamp,
+                geometry_msgs::WrenchStamped* msg);
+
+/// Arrows in the world frame: per closed contact the force (namespace "contact_force", tail at
+/// the contact point) and the drilling torque (namespace "drilling_torque", along the normal);
+/// DELETE for open contacts. Lengths: force_scale [m/N], torque_scale [m/(N m)].
+void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
+                 double force_scale, double torque_scale, visualization_msgs::MarkerArray* msg);
+
+/// One DELETEALL marker (sent after a reset).
+visualization_msgs::MarkerArray DeleteAllMarkers(const std::string& world_frame);
+
+}  // namespace nonsmooth_sim::node
+
+#endif  // NONSMOOTH_SIM_NODE_CONVERSIONS_H_

@@ -1,0 +1,46 @@
+// Initial conditions of the node's scene (parameters ~initial/... and the ~reset service).
+//
+// inclination θ and spin ω give the Tippe-Top start of ../shared/reference/tippe-top.md: e3
+// tilted about the world x axis by θ, spin ω about the tilted e3, centre of mass at rest, the
+// lowest sphere touching the ground. For a body that is a Tippe-Top (UrdfScene::tippe_top) this is
+// exactly the core's TippeTopInitialState. position, orientation and the velocities, when set,
+// replace the corresponding part (with an orientation but no position the body is lowered or
+// raised onto the ground again).
+#ifndef NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_
+#define NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "nonsmooth_sim/core/scene.h"
+#include "nonsmooth_sim/node/urdf_scene.h"
+
+namespace nonsmooth_sim::node {
+
+struct InitialConditions {
+  std::optional<double> inclination;               ///< θ [rad], in [0, π]
+  std::optional<double> spin;                      ///< ω about e3 [rad/s], finite
+  std::optional<Eigen::Vector3d> position;         ///< r_S in the world frame [m]
+  std::optional<Eigen::Quaterniond> orientation;   ///< link axes → world, non-zero (normalised)
+  std::optional<Eigen::Vector3d> linear_velocity;  ///< v_S in the world frame [m/s]
+  std::optional<Eigen::Vector3d> angular_velocity; ///< K_ω in the link axes [rad/s]
+};
+
+/// Each field of `overrides` that is set, else the one of `defaults`.
+InitialConditions Merge(const InitialConditions& defaults, const InitialConditions& overrides);
+
+/// Throws std::invalid_argument naming the field and the reason (NaN/Inf, θ outside [0, π],
+/// zero quaternion).
+void ValidateInitialConditions(const InitialConditions& initial);
+
+/// The start of every body: `body` from `initial` (unset θ and ω: the core's
+/// TippeTopInitialConditions defaults), the other bodies at their URDF pose, at rest.
+/// Throws std::invalid_argument (see ValidateInitialConditions) and std::out_of_range for `body`.
+std::vector<BodyState> InitialState(const UrdfScene& urdf, int body,
+                                    const InitialConditions& initial);
+
+}  // namespace nonsmooth_sim::node
+
+#endif  // NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_

@@ -1,0 +1,58 @@
+// The node's private parameters: read once, with defaults, validated (README, "Parameters").
+#ifndef NONSMOOTH_SIM_NODE_NODE_PARAMETERS_H_
+#define NONSMOOTH_SIM_NODE_NODE_PARAMETERS_H_
+
+#include <ros/node_handle.h>
+
+#include <string>
+
+#include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/node/urdf_scene.h"
+
+namespace nonsmooth_sim::node {
+
+/// Publish rates are in Hz of simulated time (a message every round(1/(rate·Δt)) steps, at most
+/// one per step; 0 = never) unless marked wall.
+struct NodeParameters {
+  std::string urdf_file;          ///< ~urdf_file: read the URDF from this file instead of
+                                  ///< the robot_description parameter
+  std::string urdf_xml;           ///< the URDF text (filled from either source)
+  std::string world_frame = "world";  ///< ~world_frame: fixed frame of TF, markers, contacts
+  UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius
+  SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
+                                  ///< ~max_iterations, ~relaxation, ~gyroscopic
+  std::string initial_body;       ///< ~initial/body: the body the initial conditions move
+  InitialConditions initial;      ///< ~initial/{inclination,spin,position,orientation,
+                                  ///< linear_velocity,angular_velocity}
+  double real_time_factor = 1.0;  ///< ~real_time_factor: sim time / wall time, ≥ 0; 0 = as fast
+                                  ///< as possible
+  bool paused = false;            ///< ~paused: start paused
+  double duration = 0.0;          ///< ~duration [s]: pause when the sim time reaches it; 0 = never
+  double tf_rate = 1000.0;        ///< ~tf_rate: world → link and contact frames
+  double contacts_rate = 1000.0;  ///< ~contacts_rate: ~contacts and the contact wrenches
+  double state_rate = 100.0;      ///< ~state_rate: ~state
+  double markers_rate = 30.0;     ///< ~markers_rate: ~contact_markers
+  double clock_rate = 100.0;      ///< ~clock_rate [wall Hz]: /clock throttle, > 0
+  double diagnostics_rate = 1.0;  ///< ~diagnostics_rate [wall Hz]: /diagnostics, > 0
+  double wall_update_rate = 200.0;  ///< ~wall_update_rate [wall Hz]: how often the integrator
+                                    ///< catches up with wall time when real_time_factor > 0
+  int queue_size = 1000;          ///< ~queue_size: publisher queues, ≥ 1
+  /// ~max_wall_publish_rate [wall Hz]: no topic is published more often than this in wall
+  /// time; the simulation slows down instead of skipping messages (a cap on the real-time
+  /// factor). 0 = no limit. For subscribers with small queues, e.g. rosbag record (100).
+  double max_wall_publish_rate = 0.0;
+  double marker_force_scale = 0.5;     ///< ~marker_force_scale [m/N]: arrow length per force
+  double marker_torque_scale = 5000.0; ///< ~marker_torque_scale [m/(N m)]: per drilling torque
+};
+
+/// Reads the private parameters of `private_nh` (and robot_description from `nh` unless
+/// ~urdf_file is set). Throws std::invalid_argument with one line naming the parameter.
+NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
+/// The checks ReadNodeParameters applies (ranges, names), for parameters built in code.
+void ValidateNodeParameters(const NodeParameters& parameters);
+
+}  // namespace nonsmooth_sim::node
+
+#endif  // NONSMOOTH_SIM_NODE_NODE_PARAMETERS_H_

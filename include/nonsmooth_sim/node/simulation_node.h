@@ -1,0 +1,175 @@
+// The ROS node: serves a core Simulator to ROS (README, "The ROS node"). It converts between
+// messages and the core and holds no physics.
+//
+// Threads: the integrator runs on its own thread, paced by the wall clock (sim time = wall time ×
+// ~real_time_factor, or as fast as possible for 0); services and the diagnostics wall timer run
+// in the ROS spinner. One mutex guards the Simulator: the integrator holds it for a bounded chunk
+// of steps, so every service applies its change between two steps. A service that waits for the
+// mutex is served before the next chunk (LockForService).
+#ifndef NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
+#define NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "nonsmooth_sim/GetFrictionSet.h"
+#include "nonsmooth_sim/GetSimulationState.h"
+#include "nonsmooth_sim/GetSolverProperties.h"
+#include "nonsmooth_sim/ResetState.h"
+#include "nonsmooth_sim/SetFrictionSet.h"
+#include "nonsmooth_sim/SetSolverProperties.h"
+#include "nonsmooth_sim/StepSimulation.h"
+#include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/node/conversions.h"
+#include "nonsmooth_sim/node/node_parameters.h"
+#include "nonsmooth_sim/node/urdf_scene.h"
+
+namespace nonsmooth_sim::node {
+
+class SimulationNode {
+ public:
+  /// Builds the scene's start from the parameters, advertises topics and services and starts the
+  /// integrator thread. Throws std::invalid_argument on bad initial conditions.
+  SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                 NodeParameters parameters, UrdfScene urdf);
+  ~SimulationNode();
+  SimulationNode(const SimulationNode&) = delete;
+  SimulationNode& operator=(const SimulationNode&) = delete;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  /// A message stream published every `period` steps (0 = never).
+  struct Channel {
+    double rate = 0.0;  ///< [Hz of sim time]
+    std::int64_t period = 0;
+    std::int64_t countdown = 0;
+  };
+
+  /// Accumulated over a diagnostics period (and over the whole run).
+  struct RunStatistics {
+    std::int64_t steps = 0;
+    double busy_wall = 0.0;     ///< [s] in the integrator: stepping and publishing
+    double publish_wall = 0.0;  ///< [s] of it publishing
+    std::int64_t iterations_sum = 0;
+    int iterations_max = 0;
+    double residual_max = 0.0;
+    std::int64_t unconverged = 0;
+    double max_dt_omega = 0.0;
+    void Add(const StepStatistics& step);
+  };
+
+  // --- integrator (mutex held)
+  void Run();
+  /// Steps until `budget` steps are done, the deadline passes or the run pauses; returns the steps.
+  std::int64_t RunChunk(std::int64_t budget, Clock::time_point deadline);
+  void StepOnce();
+  void Pause(const char* reason);
+  void Unpause();
+  std::unique_lock<std::mutex> LockForService();
+
+  // --- publishing (mutex held)
+  void UpdatePeriods();
+  void RestartChannels();
+  void PublishDue();
+  void PublishTransforms();
+  void PublishContacts();
+  void PublishState();
+  void PublishMarkers();
+  void PublishClock(bool flush);
+  void AfterReset();
+
+  // --- services (service thread)
+  bool OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnStep(StepSimulation::Request& req, StepSimulation::Response& res);
+  bool OnResetState(ResetState::Request& req, ResetState::Response& res);
+  bool OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool OnSetFrictionSet(SetFrictionSet::Request& req, SetFrictionSet::Response& res);
+  bool OnGetFrictionSet(GetFrictionSet::Request& req, GetFrictionSet::Response& res);
+  bool OnGetSolverProperties(GetSolverProperties::Request&, GetSolverProperties::Response& res);
+  bool OnSetSolverProperties(SetSolverProperties::Request& req,
+                             SetSolverProperties::Response& res);
+  bool OnGetState(GetSimulationState::Request&, GetSimulationState::Response& res);
+
+  // --- diagnostics (spinner thread)
+  void OnDiagnosticsTimer(const ros::WallTimerEvent&);
+  void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  int SphereIndex(const std::string& name) const;  ///< -1 if unknown
+  int BodyIndex(const std::string& name) const;    ///< -1 if unknown
+  std::string FrictionSetSummary() const;
+
+  const NodeParameters parameters_;
+  const UrdfScene urdf_;
+  const int initial_body_;
+  Scene configured_scene_;  ///< the URDF scene with the configured start (reset_simulation)
+  const FrameNames frames_;
+
+  ros::NodeHandle nh_, private_nh_;
+  ros::Publisher clock_pub_, tf_pub_, contacts_pub_, state_pub_, markers_pub_;
+  std::vector<ros::Publisher> wrench_pubs_;
+  std::vector<ros::ServiceServer> services_;
+  ros::WallTimer diagnostics_timer_;
+  diagnostic_updater::Updater updater_;
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::atomic<int> waiting_services_{0};
+  bool stop_ = false;
+
+  // --- guarded by mutex_
+  std::unique_ptr<Simulator> sim_;
+  StepStatistics last_step_;
+  bool paused_ = false;
+  bool duration_reached_ = false;
+  Channel tf_, contacts_, state_, markers_;
+  ros::Time last_tf_stamp_, last_clock_stamp_;
+  Clock::time_point last_clock_wall_;
+  std::vector<bool> wrench_closed_;
+  double pace_ = 0.0;  ///< real-time factor the integrator keeps (0: as fast as possible)
+  Clock::time_point anchor_wall_;
+  std::int64_t steps_since_anchor_ = 0;
+  RunStatistics period_, total_;
+  double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused
+  Clock::time_point unpaused_at_;
+  // reused messages
+  tf2_msgs::TFMessage tf_msg_;
+  ContactInfoArray contacts_msg_;
+  SimulationState state_msg_;
+  visualization_msgs::MarkerArray markers_msg_;
+  geometry_msgs::WrenchStamped wrench_msg_;
+
+  // --- diagnostics thread only
+  struct DiagnosticsSnapshot {
+    RunStatistics period;
+    std::int64_t unconverged_total = 0;
+    double sim_time = 0.0;
+    double real_time_factor = 0.0;  ///< measured over the period
+    bool paused = false;
+    int closed_contacts = 0;
+    std::string friction_sets;
+    std::string solver;
+    double time_step = 0.0;
+    double pace = 0.0;
+  } snapshot_;
+  double previous_sim_time_ = 0.0;
+  Clock::time_point previous_diagnostics_wall_;
+
+  std::thread integrator_;  // last: started when everything above exists
+};
+
+}  // namespace nonsmooth_sim::node
+
+#endif  // NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_

@@ -1,0 +1,107 @@
+// Initial conditions -> core BodyState. See initial_conditions.h.
+#include "nonsmooth_sim/node/initial_conditions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "nonsmooth_sim/core/tippe_top.h"
+
+namespace nonsmooth_sim::node {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+template <typename T>
+std::optional<T> Pick(const std::optional<T>& over, const std::optional<T>& def) {
+  return over ? over : def;
+}
+
+void RequireFinite(const char* field, bool finite) {
+  if (!finite) throw std::invalid_argument(std::string(field) + " must be finite");
+}
+
+// Height of r_S at which the lowest sphere of `body` just touches z = 0 in orientation `q`;
+// `fallback` for a body without spheres.
+double TouchingHeight(const Scene& scene, int body, const Eigen::Quaterniond& q, double fallback) {
+  double height = -std::numeric_limits<double>::infinity();
+  for (const Sphere& s : scene.spheres) {
+    if (s.body == body) height = std::max(height, s.radius - (q * s.center).z());
+  }
+  return std::isfinite(height) ? height : fallback;
+}
+
+}  // namespace
+
+InitialConditions Merge(const InitialConditions& defaults, const InitialConditions& overrides) {
+  InitialConditions m;
+  m.inclination = Pick(overrides.inclination, defaults.inclination);
+  m.spin = Pick(overrides.spin, defaults.spin);
+  m.position = Pick(overrides.position, defaults.position);
+  m.orientation = Pick(overrides.orientation, defaults.orientation);
+  m.linear_velocity = Pick(overrides.linear_velocity, defaults.linear_velocity);
+  m.angular_velocity = Pick(overrides.angular_velocity, defaults.angular_velocity);
+  return m;
+}
+
+void ValidateInitialConditions(const InitialConditions& initial) {
+  if (initial.inclination) {
+    RequireFinite("inclination", std::isfinite(*initial.inclination));
+    if (*initial.inclination < 0.0 || *initial.inclination > kPi) {
+      throw std::invalid_argument("inclination must be in [0, pi] rad, got " +
+                                  std::to_string(*initial.inclination));
+    }
+  }
+  if (initial.spin) RequireFinite("spin", std::isfinite(*initial.spin));
+  if (initial.position) RequireFinite("position", initial.position->allFinite());
+  if (initial.orientation) {
+    RequireFinite("orientation", initial.orientation->coeffs().allFinite());
+    if (initial.orientation->coeffs().squaredNorm() == 0.0) {
+      throw std::invalid_argument("orientation must be a non-zero quaternion");
+    }
+  }
+  if (initial.linear_velocity) {
+    RequireFinite("linear_velocity", initial.linear_velocity->allFinite());
+  }
+  if (initial.angular_velocity) {
+    RequireFinite("angular_velocity", initial.angular_velocity->allFinite());
+  }
+}
+
+std::vector<BodyState> InitialState(const UrdfScene& urdf, int body,
+                                    const InitialConditions& initial) {
+  ValidateInitialConditions(initial);
+  const Scene& scene = urdf.scene;
+  if (body < 0 || body >= static_cast<int>(scene.bodies.size())) {
+    throw std::out_of_range("body index " + std::to_string(body) + " out of range");
+  }
+  const TippeTopInitialConditions defaults;
+  const TippeTopInitialConditions tilt{initial.inclination.value_or(defaults.inclination),
+                                       initial.spin.value_or(defaults.spin)};
+
+  std::vector<BodyState> state = scene.initial_state;
+  BodyState& s = state[body];
+  if (urdf.tippe_top[body]) {
+    // the core's own start for the Tippe-Top, bit for bit
+    s = TippeTopInitialState(*urdf.tippe_top[body], tilt);
+  } else {
+    const double x = s.position.x();
+    const double y = s.position.y();
+    s.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(tilt.inclination, Eigen::Vector3d::UnitX()));
+    s.angular_velocity = Eigen::Vector3d(0.0, 0.0, tilt.spin);
+    s.linear_velocity.setZero();
+    s.position = Eigen::Vector3d(x, y, TouchingHeight(scene, body, s.orientation, s.position.z()));
+  }
+  if (initial.orientation) {
+    s.orientation = initial.orientation->normalized();
+    s.position.z() = TouchingHeight(scene, body, s.orientation, s.position.z());
+  }
+  if (initial.position) s.position = *initial.position;
+  if (initial.linear_velocity) s.linear_velocity = *initial.linear_velocity;
+  if (initial.angular_velocity) s.angular_velocity = *initial.angular_velocity;
+  return state;
+}
+
+}  // namespace nonsmooth_sim::node

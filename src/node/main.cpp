@@ -1,0 +1,26 @@
+// nonsmooth_sim_node: the simulator served to ROS. A bad parameter or URDF stops it at start-up
+// with one error line and exit code 1.
+#include <ros/ros.h>
+
+#include <exception>
+
+#include "nonsmooth_sim/node/node_parameters.h"
+#include "nonsmooth_sim/node/simulation_node.h"
+#include "nonsmooth_sim/node/urdf_scene.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "nonsmooth_sim");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  try {
+    using namespace nonsmooth_sim::node;
+    NodeParameters parameters = ReadNodeParameters(nh, private_nh);
+    UrdfScene urdf = SceneFromUrdf(parameters.urdf_xml, parameters.scene);
+    SimulationNode node(nh, private_nh, std::move(parameters), std::move(urdf));
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL_STREAM(e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,212 @@
+// Private parameters of the node: read once, validated. See node_parameters.h.
+#include "nonsmooth_sim/node/node_parameters.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace nonsmooth_sim::node {
+namespace {
+
+class ParameterReader {
+ public:
+  explicit ParameterReader(const ros::NodeHandle& nh) : nh_(nh) {}
+
+  [[noreturn]] void Fail(const std::string& name, const std::string& reason) const {
+    throw std::invalid_argument("parameter ~" + name + ": " + reason);
+  }
+
+  bool Get(const std::string& name, XmlRpc::XmlRpcValue* value) const {
+    return nh_.hasParam(name) && nh_.getParam(name, *value);
+  }
+
+  static bool IsNumber(XmlRpc::XmlRpcValue& v) {
+    return v.getType() == XmlRpc::XmlRpcValue::TypeDouble ||
+           v.getType() == XmlRpc::XmlRpcValue::TypeInt;
+  }
+  static double AsNumber(XmlRpc::XmlRpcValue& v) {
+    return v.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(v)
+                                                       : static_cast<double>(v);
+  }
+
+  std::optional<double> Number(const std::string& name) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return std::nullopt;
+    if (!IsNumber(v)) Fail(name, "expected a number");
+    const double x = AsNumber(v);
+    if (!std::isfinite(x)) Fail(name, "must be finite");
+    return x;
+  }
+  void Number(const std::string& name, double* value) const {
+    if (auto x = Number(name)) *value = *x;
+  }
+  void Integer(const std::string& name, int* value) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) Fail(name, "expected an integer");
+    *value = static_cast<int>(v);
+  }
+  void Bool(const std::string& name, bool* value) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) Fail(name, "expected true or false");
+    *value = static_cast<bool>(v);
+  }
+  void String(const std::string& name, std::string* value) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) Fail(name, "expected a string");
+    *value = static_cast<std::string>(v);
+  }
+  std::optional<Eigen::VectorXd> Numbers(const std::string& name, int count) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return std::nullopt;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeArray || v.size() != count) {
+      Fail(name, "expected a list of " + std::to_string(count) + " numbers");
+    }
+    Eigen::VectorXd x(count);
+    for (int i = 0; i < count; ++i) {
+      if (!IsNumber(v[i])) Fail(name, "expected a list of " + std::to_string(count) + " numbers");
+      x[i] = AsNumber(v[i]);
+    }
+    if (!x.allFinite()) Fail(name, "must be finite");
+    return x;
+  }
+
+ private:
+  const ros::NodeHandle& nh_;
+};
+
+void RequireRate(const char* name, double rate, bool zero_allowed) {
+  if (!(rate > 0.0 || (zero_allowed && rate == 0.0))) {
+    throw std::invalid_argument(std::string("parameter ~") + name + ": must be " +
+                                (zero_allowed ? ">= 0 (0 = off)" : "> 0") + " [Hz], got " +
+                                std::to_string(rate));
+  }
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("parameter ~urdf_file: cannot read \"" + path + "\"");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+void ValidateNodeParameters(const NodeParameters& p) {
+  if (p.world_frame.empty()) throw std::invalid_argument("parameter ~world_frame: empty");
+  try {
+    ValidateUrdfSceneOptions(p.scene);
+    ValidateSimulatorOptions(p.simulator);
+    ValidateInitialConditions(p.initial);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("parameters: ") + e.what());
+  }
+  if (!(p.real_time_factor >= 0.0)) {
+    throw std::invalid_argument("parameter ~real_time_factor: must be >= 0 (0 = as fast as "
+                                "possible), got " + std::to_string(p.real_time_factor));
+  }
+  if (!(p.duration >= 0.0)) {
+    throw std::invalid_argument("parameter ~duration: must be >= 0 [s] (0 = run on), got " +
+                                std::to_string(p.duration));
+  }
+  RequireRate("tf_rate", p.tf_rate, true);
+  RequireRate("contacts_rate", p.contacts_rate, true);
+  RequireRate("state_rate", p.state_rate, true);
+  RequireRate("markers_rate", p.markers_rate, true);
+  RequireRate("clock_rate", p.clock_rate, false);
+  RequireRate("diagnostics_rate", p.diagnostics_rate, false);
+  RequireRate("wall_update_rate", p.wall_update_rate, false);
+  if (p.queue_size < 1) throw std::invalid_argument("parameter ~queue_size: must be >= 1");
+  RequireRate("max_wall_publish_rate", p.max_wall_publish_rate, true);
+  if (!(p.marker_force_scale >= 0.0) || !(p.marker_torque_scale >= 0.0)) {
+    throw std::invalid_argument("parameters ~marker_force_scale, ~marker_torque_scale: >= 0");
+  }
+}
+
+NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) {
+  const ParameterReader r(private_nh);
+  NodeParameters p;
+
+  r.String("urdf_file", &p.urdf_file);
+  if (!p.urdf_file.empty()) {
+    p.urdf_xml = ReadFile(p.urdf_file);
+  } else if (!nh.getParam("robot_description", p.urdf_xml)) {
+    throw std::invalid_argument(
+        "no URDF: set the robot_description parameter (a string) or ~urdf_file");
+  }
+  r.String("world_frame", &p.world_frame);
+
+  // scene
+  r.Number("gravity", &p.scene.gravity);
+  std::string name = std::string(FrictionSetName(p.scene.friction_set));
+  r.String("friction_set", &name);
+  const auto set = FrictionSetFromName(name);
+  if (!set) {
+    r.Fail("friction_set", "unknown friction set \"" + name + "\", expected one of " +
+                               FrictionSetNameList());
+  }
+  p.scene.friction_set = *set;
+  p.scene.mu = r.Number("mu");
+  p.scene.contact_radius = r.Number("contact_radius");
+
+  // simulator and solver
+  r.Number("time_step", &p.simulator.time_step);
+  name = std::string(SolverTypeName(p.simulator.solver.type));
+  r.String("solver", &name);
+  const auto solver = SolverTypeFromName(name);
+  if (!solver) {
+    r.Fail("solver", "unknown solver \"" + name + "\", expected one of " + SolverTypeNameList());
+  }
+  p.simulator.solver.type = *solver;
+  r.Number("tolerance", &p.simulator.solver.tolerance_rel);
+  r.Number("tolerance_abs", &p.simulator.solver.tolerance_abs);
+  r.Integer("max_iterations", &p.simulator.solver.max_iterations);
+  r.Number("relaxation", &p.simulator.solver.relaxation);
+  name = std::string(GyroscopicSchemeName(p.simulator.gyroscopic));
+  r.String("gyroscopic", &name);
+  const auto gyroscopic = GyroscopicSchemeFromName(name);
+  if (!gyroscopic) {
+    r.Fail("gyroscopic", "unknown scheme \"" + name + "\", expected explicit or implicit_midpoint");
+  }
+  p.simulator.gyroscopic = *gyroscopic;
+
+  // initial conditions
+  r.String("initial/body", &p.initial_body);
+  p.initial.inclination = r.Number("initial/inclination");
+  p.initial.spin = r.Number("initial/spin");
+  if (auto v = r.Numbers("initial/position", 3)) p.initial.position = Eigen::Vector3d(*v);
+  if (auto v = r.Numbers("initial/orientation", 4)) {
+    p.initial.orientation = Eigen::Quaterniond((*v)[3], (*v)[0], (*v)[1], (*v)[2]);
+  }
+  if (auto v = r.Numbers("initial/linear_velocity", 3)) {
+    p.initial.linear_velocity = Eigen::Vector3d(*v);
+  }
+  if (auto v = r.Numbers("initial/angular_velocity", 3)) {
+    p.initial.angular_velocity = Eigen::Vector3d(*v);
+  }
+
+  // running and publishing
+  r.Number("real_time_factor", &p.real_time_factor);
+  r.Bool("paused", &p.paused);
+  r.Number("duration", &p.duration);
+  r.Number("tf_rate", &p.tf_rate);
+  r.Number("contacts_rate", &p.contacts_rate);
+  r.Number("state_rate", &p.state_rate);
+  r.Number("markers_rate", &p.markers_rate);
+  r.Number("clock_rate", &p.clock_rate);
+  r.Number("diagnostics_rate", &p.diagnostics_rate);
+  r.Number("wall_update_rate", &p.wall_update_rate);
+  r.Integer("queue_size", &p.queue_size);
+  r.Number("max_wall_publish_rate", &p.max_wall_publish_rate);
+  r.Number("marker_force_scale", &p.marker_force_scale);
+  r.Number("marker_torque_scale", &p.marker_torque_scale);
+
+  ValidateNodeParameters(p);
+  return p;
+}
+
+}  // namespace nonsmooth_sim::node

@@ -1,0 +1,248 @@
+// The node's services. Every setter validates first and changes nothing on bad input; changes
+// happen with the simulator mutex held, i.e. between two steps.
+#include <sstream>
+#include <stdexcept>
+
+#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/node/simulation_node.h"
+
+namespace nonsmooth_sim::node {
+namespace {
+
+// A field of a request given as an array: empty = not set, else exactly `count` values.
+template <typename T>
+std::optional<std::vector<T>> Optional(const char* field, const std::vector<T>& values,
+                                       std::size_t count) {
+  if (values.empty()) return std::nullopt;
+  if (values.size() != count) {
+    throw std::invalid_argument(std::string(field) + ": expected 0 (default) or " +
+                                std::to_string(count) + " values, got " +
+                                std::to_string(values.size()));
+  }
+  return values;
+}
+
+std::optional<Eigen::Vector3d> Vector3(const char* field, const std::vector<double>& values) {
+  const auto v = Optional(field, values, 3);
+  if (!v) return std::nullopt;
+  return Eigen::Vector3d((*v)[0], (*v)[1], (*v)[2]);
+}
+
+std::optional<double> Scalar(const char* field, const std::vector<double>& values) {
+  const auto v = Optional(field, values, 1);
+  if (!v) return std::nullopt;
+  return (*v)[0];
+}
+
+InitialConditions FromRequest(const ResetState::Request& req) {
+  InitialConditions ic;
+  ic.inclination = Scalar("inclination", req.inclination);
+  ic.spin = Scalar("spin", req.spin);
+  ic.position = Vector3("position", req.position);
+  if (const auto q = Optional("orientation", req.orientation, 4)) {
+    ic.orientation = Eigen::Quaterniond((*q)[3], (*q)[0], (*q)[1], (*q)[2]);
+  }
+  ic.linear_velocity = Vector3("linear_velocity", req.linear_velocity);
+  ic.angular_velocity = Vector3("angular_velocity", req.angular_velocity);
+  return ic;
+}
+
+}  // namespace
+
+bool SimulationNode::OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  const auto lock = LockForService();
+  Pause("~pause_physics");
+  return true;
+}
+
+bool SimulationNode::OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  const auto lock = LockForService();
+  Unpause();
+  return true;
+}
+
+bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Response& res) {
+  const auto lock = LockForService();
+  res.sim_time = sim_->time();
+  res.stamp = StampOf(sim_->time());
+  if (!paused_) {
+    res.success = false;
+    res.status_message = "the simulation is running: call ~pause_physics first";
+    return true;
+  }
+  if (req.steps < 1) {
+    res.success = false;
+    res.status_message = "steps must be >= 1";
+    return true;
+  }
+  const Clock::time_point start = Clock::now();
+  for (std::uint32_t k = 0; k < req.steps; ++k) StepOnce();
+  const double busy = std::chrono::duration<double>(Clock::now() - start).count();
+  period_.busy_wall += busy;
+  total_.busy_wall += busy;
+  PublishClock(/*flush=*/true);
+  res.sim_time = sim_->time();
+  res.stamp = StampOf(sim_->time());
+  res.success = true;
+  res.status_message = "stepped " + std::to_string(req.steps) + " x " +
+                       std::to_string(sim_->options().time_step) + " s";
+  return true;
+}
+
+bool SimulationNode::OnResetState(ResetState::Request& req, ResetState::Response& res) {
+  const auto lock = LockForService();
+  res.sim_time = sim_->time();
+  try {
+    const int body = req.body.empty() ? initial_body_ : BodyIndex(req.body);
+    if (body < 0) throw std::invalid_argument("body \"" + req.body + "\" is not a free body");
+    const InitialConditions request = FromRequest(req);
+    ValidateInitialConditions(request);
+    std::vector<BodyState> state = configured_scene_.initial_state;
+    if (body == initial_body_) {
+      state = InitialState(urdf_, body, Merge(parameters_.initial, request));
+    } else {
+      state[body] = InitialState(urdf_, body, request)[body];
+    }
+    sim_->SetState(state);  // validates; clears the warm start
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.status_message = std::string("rejected, state unchanged: ") + e.what();
+    return true;
+  }
+  AfterReset();
+  res.success = true;
+  res.status_message = "reset at t = " + std::to_string(sim_->time()) + " s";
+  return true;
+}
+
+bool SimulationNode::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  const auto lock = LockForService();
+  sim_->SetState(configured_scene_.initial_state);
+  AfterReset();
+  return true;
+}
+
+bool SimulationNode::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  const auto lock = LockForService();
+  // a fresh simulator with the configured laws and solver; the time goes on (/clock monotone)
+  const double time = sim_->time();
+  sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+  sim_->SetTime(time);
+  last_step_ = StepStatistics();
+  total_ = RunStatistics();
+  UpdatePeriods();
+  AfterReset();
+  return true;
+}
+
+bool SimulationNode::OnSetFrictionSet(SetFrictionSet::Request& req,
+                                      SetFrictionSet::Response& res) {
+  const auto lock = LockForService();
+  const auto set = FrictionSetFromName(req.friction_set);
+  if (!set) {
+    res.success = false;
+    res.status_message = "unknown friction set \"" + req.friction_set + "\", expected one of " +
+                         FrictionSetNameList() + "; nothing changed";
+    return true;
+  }
+  std::optional<int> sphere;
+  if (!req.contact.empty()) {
+    sphere = SphereIndex(req.contact);
+    if (*sphere < 0) {
+      res.success = false;
+      res.status_message = "unknown contact \"" + req.contact + "\"; nothing changed";
+      return true;
+    }
+  }
+  sim_->SetFrictionSet(*set, sphere);
+  res.success = true;
+  res.status_message = "friction set at t = " + std::to_string(sim_->time()) +
+                       " s: " + FrictionSetSummary();
+  return true;
+}
+
+bool SimulationNode::OnGetFrictionSet(GetFrictionSet::Request& req,
+                                      GetFrictionSet::Response& res) {
+  const auto lock = LockForService();
+  const auto& spheres = sim_->scene().spheres;
+  for (int i = 0; i < static_cast<int>(spheres.size()); ++i) {
+    if (!req.contact.empty() && spheres[i].name != req.contact) continue;
+    res.contacts.push_back(spheres[i].name);
+    res.friction_sets.emplace_back(FrictionSetName(spheres[i].law.friction_set));
+  }
+  res.success = req.contact.empty() || !res.contacts.empty();
+  res.status_message = res.success ? FrictionSetSummary()
+                                   : "unknown contact \"" + req.contact + "\"";
+  return true;
+}
+
+bool SimulationNode::OnGetSolverProperties(GetSolverProperties::Request&,
+                                           GetSolverProperties::Response& res) {
+  const auto lock = LockForService();
+  const SimulatorOptions& o = sim_->options();
+  res.time_step = o.time_step;
+  res.solver = std::string(SolverTypeName(o.solver.type));
+  res.tolerance = o.solver.tolerance_rel;
+  res.tolerance_abs = o.solver.tolerance_abs;
+  res.max_iterations = o.solver.max_iterations;
+  res.relaxation = o.solver.relaxation;
+  res.gyroscopic = std::string(GyroscopicSchemeName(o.gyroscopic));
+  return true;
+}
+
+bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
+                                           SetSolverProperties::Response& res) {
+  const auto lock = LockForService();
+  SimulatorOptions o = sim_->options();
+  try {
+    if (auto v = Scalar("time_step", req.time_step)) o.time_step = *v;
+    if (auto v = Scalar("tolerance", req.tolerance)) o.solver.tolerance_rel = *v;
+    if (auto v = Scalar("tolerance_abs", req.tolerance_abs)) o.solver.tolerance_abs = *v;
+    if (auto v = Scalar("relaxation", req.relaxation)) o.solver.relaxation = *v;
+    if (auto v = Optional("max_iterations", req.max_iterations, 1)) {
+      o.solver.max_iterations = (*v)[0];
+    }
+    if (!req.solver.empty()) {
+      const auto type = SolverTypeFromName(req.solver);
+      if (!type) {
+        throw std::invalid_argument("unknown solver \"" + req.solver + "\", expected one of " +
+                                    SolverTypeNameList());
+      }
+      o.solver.type = *type;
+    }
+    if (!req.gyroscopic.empty()) {
+      const auto scheme = GyroscopicSchemeFromName(req.gyroscopic);
+      if (!scheme) {
+        throw std::invalid_argument("unknown gyroscopic scheme \"" + req.gyroscopic +
+                                    "\", expected explicit or implicit_midpoint");
+      }
+      o.gyroscopic = *scheme;
+    }
+    ValidateSimulatorOptions(o);
+    sim_->SetOptions(o);
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.status_message = std::string("rejected, nothing changed: ") + e.what();
+    return true;
+  }
+  UpdatePeriods();
+  RestartChannels();
+  anchor_wall_ = Clock::now();
+  steps_since_anchor_ = 0;
+  res.success = true;
+  std::ostringstream message;
+  message << "time step " << o.time_step << " s, solver " << SolverTypeName(o.solver.type)
+          << ", tolerance " << o.solver.tolerance_rel << " (abs " << o.solver.tolerance_abs
+          << "), max iterations " << o.solver.max_iterations << ", relaxation "
+          << o.solver.relaxation << ", gyroscopic " << GyroscopicSchemeName(o.gyroscopic);
+  res.status_message = message.str();
+  return true;
+}
+
+bool SimulationNode::OnGetState(GetSimulationState::Request&, GetSimulationState::Response& res) {
+  const auto lock = LockForService();
+  FillState(*sim_, paused_, frames_.world, &res.state);
+  return true;
+}
+
+}  // namespace nonsmooth_sim::node

@@ -1,0 +1,437 @@
+// The node: set-up, the integrator thread, publishing, diagnostics. Services: node_services.cpp.
+#include "nonsmooth_sim/node/simulation_node.h"
+
+#include <rosgraph_msgs/Clock.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "nonsmooth_sim/node/initial_conditions.h"
+
+namespace nonsmooth_sim::node {
+namespace {
+
+// The integrator holds the mutex for at most this long before letting services in [s].
+constexpr double kMaxChunkWall = 0.01;
+// With a real-time factor > 0, a backlog longer than this (wall time the integrator could not
+// keep up with) is dropped instead of being caught up in a burst [s].
+constexpr double kMaxBacklogWall = 0.1;
+// How often (in steps) a long run checks the wall clock.
+constexpr std::int64_t kWallCheckSteps = 16;
+
+double Seconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+int ResolveBody(const UrdfScene& urdf, const std::string& name) {
+  if (name.empty()) return 0;
+  for (int b = 0; b < static_cast<int>(urdf.scene.bodies.size()); ++b) {
+    if (urdf.scene.bodies[b].name == name) return b;
+  }
+  throw std::invalid_argument("parameter ~initial/body: \"" + name + "\" is not a free body");
+}
+
+Scene ConfiguredScene(const UrdfScene& urdf, int body, const InitialConditions& initial) {
+  Scene scene = urdf.scene;
+  scene.initial_state = InitialState(urdf, body, initial);
+  return scene;
+}
+
+}  // namespace
+
+void SimulationNode::RunStatistics::Add(const StepStatistics& step) {
+  ++steps;
+  iterations_sum += step.solver.iterations;
+  iterations_max = std::max(iterations_max, step.solver.iterations);
+  if (step.closed_contacts > 0) {
+    residual_max = std::max(residual_max, step.solver.residual);
+    if (!step.solver.converged) ++unconverged;
+  }
+  max_dt_omega = std::max(max_dt_omega, step.max_dt_omega);
+}
+
+SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                               NodeParameters parameters, UrdfScene urdf)
+    : parameters_(std::move(parameters)),
+      urdf_(std::move(urdf)),
+      initial_body_(ResolveBody(urdf_, parameters_.initial_body)),
+      configured_scene_(ConfiguredScene(urdf_, initial_body_, parameters_.initial)),
+      frames_(MakeFrameNames(urdf_.scene, parameters_.world_frame)),
+      nh_(nh),
+      private_nh_(private_nh),
+      updater_(nh, private_nh) {
+  sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+  paused_ = parameters_.paused;
+  for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
+
+  const int queue = parameters_.queue_size;
+  // latched: a node joining while paused learns the time at once (and never sees 0)
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10, /*latch=*/true);
+  tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", queue);
+  contacts_pub_ = private_nh_.advertise<ContactInfoArray>("contacts", queue);
+  state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
+  markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
+  for (const Sphere& s : urdf_.scene.spheres) {
+    wrench_pubs_.push_back(
+        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + GraphName(s.name), queue));
+  }
+  wrench_closed_.assign(urdf_.scene.spheres.size(), false);
+
+  auto& p = private_nh_;
+  services_ = {
+      p.advertiseService("pause_physics", &SimulationNode::OnPause, this),
+      p.advertiseService("unpause_physics", &SimulationNode::OnUnpause, this),
+      p.advertiseService("step", &SimulationNode::OnStep, this),
+      p.advertiseService("reset", &SimulationNode::OnResetState, this),
+      p.advertiseService("reset_world", &SimulationNode::OnResetWorld, this),
+      p.advertiseService("reset_simulation", &SimulationNode::OnResetSimulation, this),
+      p.advertiseService("set_friction_set", &SimulationNode::OnSetFrictionSet, this),
+      p.advertiseService("get_friction_set", &SimulationNode::OnGetFrictionSet, this),
+      p.advertiseService("get_solver_properties", &SimulationNode::OnGetSolverProperties, this),
+      p.advertiseService("set_solver_properties", &SimulationNode::OnSetSolverProperties, this),
+      p.advertiseService("get_state", &SimulationNode::OnGetState, this),
+  };
+
+  updater_.setHardwareID("nonsmooth_sim");
+  updater_.add("simulation", this, &SimulationNode::Diagnose);
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / parameters_.diagnostics_rate),
+                                           &SimulationNode::OnDiagnosticsTimer, this);
+
+  UpdatePeriods();
+  RestartChannels();
+  PublishClock(/*flush=*/true);
+  anchor_wall_ = unpaused_at_ = previous_diagnostics_wall_ = Clock::now();
+
+  ROS_INFO("nonsmooth_sim: %zu bodies, %zu contacts, friction set %s, time step %g s, "
+           "real-time factor %g%s, %s",
+           urdf_.scene.bodies.size(), urdf_.scene.spheres.size(), FrictionSetSummary().c_str(),
+           parameters_.simulator.time_step, parameters_.real_time_factor,
+           parameters_.real_time_factor == 0.0 ? " (as fast as possible)" : "",
+           paused_ ? "paused" : "running");
+  if (pace_ != parameters_.real_time_factor) {
+    ROS_INFO("nonsmooth_sim: real-time factor limited to %g by ~max_wall_publish_rate %g Hz",
+             pace_, parameters_.max_wall_publish_rate);
+  }
+  integrator_ = std::thread(&SimulationNode::Run, this);
+}
+
+SimulationNode::~SimulationNode() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (integrator_.joinable()) integrator_.join();
+}
+
+std::unique_lock<std::mutex> SimulationNode::LockForService() {
+  ++waiting_services_;
+  std::unique_lock<std::mutex> lock(mutex_);
+  --waiting_services_;
+  return lock;
+}
+
+// ---------------------------------------------------------------------------------------------
+// integrator
+
+void SimulationNode::Run() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    if (paused_) {
+      wake_.wait(lock);
+      continue;
+    }
+    const Clock::time_point start = Clock::now();
+    const double dt = sim_->options().time_step;
+    const double factor = pace_;
+    std::int64_t budget = std::numeric_limits<std::int64_t>::max();
+    if (factor > 0.0) {
+      // sim time follows wall time × factor since the anchor
+      const auto due =
+          static_cast<std::int64_t>(std::floor(factor * Seconds(start - anchor_wall_) / dt));
+      budget = due - steps_since_anchor_;
+      if (static_cast<double>(budget) * dt / factor > kMaxBacklogWall) {
+        anchor_wall_ = start;
+        steps_since_anchor_ = 0;
+        budget = static_cast<std::int64_t>(std::floor(factor * kMaxBacklogWall / dt));
+      }
+    }
+    std::int64_t done = 0;
+    if (budget > 0) {
+      done = RunChunk(budget, start + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(kMaxChunkWall)));
+      PublishClock(/*flush=*/paused_);
+    }
+    if (factor > 0.0 && done >= budget) {
+      const auto period = std::chrono::duration<double>(1.0 / parameters_.wall_update_rate);
+      wake_.wait_until(lock, start + std::chrono::duration_cast<Clock::duration>(period));
+    } else {
+      // as fast as possible (or behind wall time): hand the mutex to waiting services first
+      lock.unlock();
+      while (waiting_services_.load() > 0) std::this_thread::yield();
+      lock.lock();
+    }
+  }
+}
+
+std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point deadline) {
+  const Clock::time_point start = Clock::now();
+  std::int64_t done = 0;
+  while (done < budget && !paused_) {
+    StepOnce();
+    ++steps_since_anchor_;
+    ++done;
+    if (done % kWallCheckSteps == 0 && Clock::now() > deadline) break;
+  }
+  const double busy = Seconds(Clock::now() - start);
+  period_.busy_wall += busy;
+  total_.busy_wall += busy;
+  return done;
+}
+
+void SimulationNode::StepOnce() {
+  last_step_ = sim_->Step();
+  period_.Add(last_step_);
+  total_.Add(last_step_);
+  PublishDue();
+  const double dt = sim_->options().time_step;
+  if (parameters_.duration > 0.0 && !duration_reached_ &&
+      sim_->time() >= parameters_.duration - 0.5 * dt) {
+    duration_reached_ = true;
+    Pause("duration reached");
+    const double steps = static_cast<double>(total_.steps);
+    ROS_INFO("nonsmooth_sim: reached t = %.6f s after %lld steps: %.3f s wall running "
+             "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
+             "%lld unconverged steps",
+             sim_->time(), static_cast<long long>(total_.steps), run_wall_,
+             run_wall_ > 0.0 ? sim_->time() / run_wall_ : 0.0,
+             1e6 * (total_.busy_wall - total_.publish_wall) / steps,
+             1e6 * total_.publish_wall / steps, static_cast<long long>(total_.unconverged));
+  }
+}
+
+void SimulationNode::Pause(const char* reason) {
+  if (!paused_) run_wall_ += Seconds(Clock::now() - unpaused_at_);
+  paused_ = true;
+  PublishClock(/*flush=*/true);
+  ROS_DEBUG("nonsmooth_sim: paused (%s) at t = %.6f s", reason, sim_->time());
+  wake_.notify_all();
+}
+
+void SimulationNode::Unpause() {
+  if (paused_) unpaused_at_ = Clock::now();
+  paused_ = false;
+  anchor_wall_ = Clock::now();
+  steps_since_anchor_ = 0;
+  wake_.notify_all();
+}
+
+// ---------------------------------------------------------------------------------------------
+// publishing
+
+void SimulationNode::UpdatePeriods() {
+  const double dt = sim_->options().time_step;
+  tf_.rate = parameters_.tf_rate;
+  contacts_.rate = parameters_.contacts_rate;
+  state_.rate = parameters_.state_rate;
+  markers_.rate = parameters_.markers_rate;
+  for (Channel* c : {&tf_, &contacts_, &state_, &markers_}) {
+    // a message every round(1/(rate Δt)) steps, at most one per step
+    c->period = c->rate > 0.0 ? std::max<std::int64_t>(1, std::llround(1.0 / (c->rate * dt))) : 0;
+  }
+  // the fastest topic [messages per sim second] must stay below ~max_wall_publish_rate in wall
+  // time: cap the real-time factor
+  pace_ = parameters_.real_time_factor;
+  std::int64_t shortest = 0;
+  for (const Channel* c : {&tf_, &contacts_, &state_, &markers_}) {
+    if (c->period > 0 && (shortest == 0 || c->period < shortest)) shortest = c->period;
+  }
+  if (parameters_.max_wall_publish_rate > 0.0 && shortest > 0) {
+    const double cap = parameters_.max_wall_publish_rate * static_cast<double>(shortest) * dt;
+    pace_ = pace_ > 0.0 ? std::min(pace_, cap) : cap;
+  }
+}
+
+void SimulationNode::RestartChannels() {
+  for (Channel* c : {&tf_, &contacts_, &state_, &markers_}) c->countdown = c->period;
+}
+
+void SimulationNode::PublishDue() {
+  bool due[4];
+  bool any = false;
+  Channel* channels[4] = {&tf_, &contacts_, &state_, &markers_};
+  for (int i = 0; i < 4; ++i) {
+    Channel& c = *channels[i];
+    due[i] = c.period > 0 && --c.countdown <= 0;
+    if (due[i]) c.countdown = c.period;
+    any = any || due[i];
+  }
+  if (!any) return;
+  const Clock::time_point start = Clock::now();
+  if (due[0]) PublishTransforms();
+  if (due[1]) PublishContacts();
+  if (due[2]) PublishState();
+  if (due[3]) PublishMarkers();
+  PublishClock(/*flush=*/false);
+  const double spent = Seconds(Clock::now() - start);
+  period_.publish_wall += spent;
+  total_.publish_wall += spent;
+}
+
+void SimulationNode::PublishTransforms() {
+  const ros::Time stamp = StampOf(sim_->time());
+  if (stamp <= last_tf_stamp_) return;  // tf2 warns about repeated stamps
+  last_tf_stamp_ = stamp;
+  if (tf_pub_.getNumSubscribers() == 0) return;
+  FillTransforms(*sim_, frames_, stamp, &tf_msg_);
+  tf_pub_.publish(tf_msg_);
+}
+
+void SimulationNode::PublishContacts() {
+  const ros::Time stamp = StampOf(sim_->time());
+  if (contacts_pub_.getNumSubscribers() > 0) {
+    FillContacts(*sim_, last_step_, frames_, &contacts_msg_);
+    contacts_pub_.publish(contacts_msg_);
+  }
+  // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
+  for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
+    const bool closed = i < sim_->contacts().size() && sim_->contacts()[i].closed;
+    if ((closed || wrench_closed_[i]) && wrench_pubs_[i].getNumSubscribers() > 0) {
+      FillWrench(*sim_, static_cast<int>(i), frames_, stamp, &wrench_msg_);
+      wrench_pubs_[i].publish(wrench_msg_);
+    }
+    wrench_closed_[i] = closed;
+  }
+}
+
+void SimulationNode::PublishState() {
+  if (state_pub_.getNumSubscribers() == 0) return;
+  FillState(*sim_, paused_, frames_.world, &state_msg_);
+  state_pub_.publish(state_msg_);
+}
+
+void SimulationNode::PublishMarkers() {
+  if (markers_pub_.getNumSubscribers() == 0) return;
+  FillMarkers(*sim_, frames_, StampOf(sim_->time()), parameters_.marker_force_scale,
+              parameters_.marker_torque_scale, &markers_msg_);
+  markers_pub_.publish(markers_msg_);
+}
+
+void SimulationNode::PublishClock(bool flush) {
+  const ros::Time stamp = StampOf(sim_->time());
+  if (!last_clock_stamp_.isZero() && stamp <= last_clock_stamp_) return;  // monotone
+  const Clock::time_point now = Clock::now();
+  if (!flush && Seconds(now - last_clock_wall_) < 1.0 / parameters_.clock_rate) return;
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  clock_pub_.publish(clock);
+  last_clock_stamp_ = stamp;
+  last_clock_wall_ = now;
+}
+
+void SimulationNode::AfterReset() {
+  RestartChannels();
+  std::fill(wrench_closed_.begin(), wrench_closed_.end(), false);
+  geometry_msgs::WrenchStamped zero;
+  for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
+    zero.header.stamp = StampOf(sim_->time());
+    zero.header.frame_id = frames_.contacts[i];
+    wrench_pubs_[i].publish(zero);
+  }
+  markers_pub_.publish(DeleteAllMarkers(frames_.world));
+  anchor_wall_ = Clock::now();
+  steps_since_anchor_ = 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// diagnostics
+
+void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
+  const Clock::time_point now = Clock::now();
+  {
+    std::unique_lock<std::mutex> lock = LockForService();
+    snapshot_.period = period_;
+    period_ = RunStatistics();
+    snapshot_.unconverged_total = total_.unconverged;
+    snapshot_.sim_time = sim_->time();
+    snapshot_.paused = paused_;
+    snapshot_.closed_contacts = last_step_.closed_contacts;
+    snapshot_.friction_sets = FrictionSetSummary();
+    snapshot_.solver = std::string(SolverTypeName(sim_->options().solver.type));
+    snapshot_.time_step = sim_->options().time_step;
+    snapshot_.pace = pace_;
+  }
+  const double wall = Seconds(now - previous_diagnostics_wall_);
+  snapshot_.real_time_factor = wall > 0.0 ? (snapshot_.sim_time - previous_sim_time_) / wall : 0.0;
+  previous_sim_time_ = snapshot_.sim_time;
+  previous_diagnostics_wall_ = now;
+  updater_.force_update();
+}
+
+void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const DiagnosticsSnapshot& s = snapshot_;
+  const RunStatistics& p = s.period;
+  const double steps = static_cast<double>(std::max<std::int64_t>(p.steps, 1));
+  if (p.unconverged > 0) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "%lld of %lld steps: contact solver not converged",
+                    static_cast<long long>(p.unconverged), static_cast<long long>(p.steps));
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, s.paused ? "paused" : "running");
+  }
+  status.add("sim time [s]", s.sim_time);
+  status.add("paused", s.paused);
+  status.add("real-time factor", s.real_time_factor);
+  status.add("requested real-time factor (0: as fast as possible)", parameters_.real_time_factor);
+  status.add("real-time factor kept (0: as fast as possible)", s.pace);
+  status.add("steps in period", p.steps);
+  status.add("step wall time [us]", 1e6 * (p.busy_wall - p.publish_wall) / steps);
+  status.add("publish wall time per step [us]", 1e6 * p.publish_wall / steps);
+  status.add("time step [s]", s.time_step);
+  status.add("solver", s.solver);
+  status.add("solver iterations (mean)", static_cast<double>(p.iterations_sum) / steps);
+  status.add("solver iterations (max)", p.iterations_max);
+  status.add("solver residual (max, <= 1: converged)", p.residual_max);
+  status.add("unconverged steps in period", p.unconverged);
+  status.add("unconverged steps in total", s.unconverged_total);
+  status.add("max dt*|omega| (explicit gyroscopic error ~ its square)", p.max_dt_omega);
+  status.add("friction set", s.friction_sets);
+  status.add("closed contacts", s.closed_contacts);
+}
+
+// ---------------------------------------------------------------------------------------------
+// lookups
+
+int SimulationNode::SphereIndex(const std::string& name) const {
+  const auto& spheres = urdf_.scene.spheres;
+  for (int i = 0; i < static_cast<int>(spheres.size()); ++i) {
+    if (spheres[i].name == name) return i;
+  }
+  return -1;
+}
+
+int SimulationNode::BodyIndex(const std::string& name) const {
+  const auto& bodies = urdf_.scene.bodies;
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    if (bodies[b].name == name) return b;
+  }
+  return -1;
+}
+
+std::string SimulationNode::FrictionSetSummary() const {
+  // "sphere" when all contacts agree, else "big_sphere: exact, peg_sphere: coulomb"
+  const auto& spheres = sim_->scene().spheres;
+  bool same = true;
+  for (const Sphere& s : spheres) same = same && s.law.friction_set == spheres[0].law.friction_set;
+  if (spheres.empty()) return "none";
+  if (same) return std::string(FrictionSetName(spheres[0].law.friction_set));
+  std::string out;
+  for (const Sphere& s : spheres) {
+    out += (out.empty() ? "" : ", ") + s.name + ": " + std::string(FrictionSetName(s.law.friction_set));
+  }
+  return out;
+}
+
+}  // namespace nonsmooth_sim::node

@@ -1,0 +1,228 @@
+// Strict XML checks and extension tags of a URDF (TinyXML2). See urdf_xml.h.
+#include "nonsmooth_sim/node/urdf_xml.h"
+
+#include <tinyxml2.h>
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "nonsmooth_sim/node/urdf_scene.h"
+
+namespace nonsmooth_sim::node {
+namespace {
+
+using tinyxml2::XMLElement;
+
+// "link "tippe_top" > inertial > mass" (robot excluded), for error lines.
+std::string Describe(const XMLElement* element) {
+  std::string path;
+  for (const XMLElement* e = element; e != nullptr && e->Parent() != nullptr;
+       e = e->Parent()->ToElement()) {
+    if (e->Parent()->ToDocument() != nullptr) break;  // the <robot> root
+    std::string part = e->Name();
+    if (const char* name = e->Attribute("name")) part += " \"" + std::string(name) + "\"";
+    if (const char* ref = e->Attribute("reference")) {
+      part += " reference=\"" + std::string(ref) + "\"";
+    }
+    path = path.empty() ? part : part + " > " + path;
+  }
+  return path;
+}
+
+[[noreturn]] void Fail(const XMLElement* element, const std::string& reason) {
+  throw UrdfError("urdf: " + Describe(element) + " (line " +
+                  std::to_string(element->GetLineNum()) + "): " + reason);
+}
+
+std::vector<std::string> Tokens(const char* text) {
+  std::istringstream in(text);
+  std::vector<std::string> tokens;
+  for (std::string token; in >> token;) tokens.push_back(token);
+  return tokens;
+}
+
+// Parses attribute `name` as `count` finite numbers; returns false when absent.
+bool NumbersAttribute(const XMLElement* element, const char* name, std::size_t count,
+                      std::vector<double>* values) {
+  const char* text = element->Attribute(name);
+  if (text == nullptr) return false;
+  const std::vector<std::string> tokens = Tokens(text);
+  const std::string quoted = std::string(name) + "=\"" + text + "\"";
+  if (tokens.size() != count) {
+    Fail(element, quoted + " has " + std::to_string(tokens.size()) + " numbers, expected " +
+                      std::to_string(count));
+  }
+  values->resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!ParseFiniteNumber(tokens[i], &(*values)[i])) {
+      Fail(element, quoted + ": \"" + tokens[i] + "\" is not a finite number");
+    }
+  }
+  return true;
+}
+
+void RequirePositive(const XMLElement* element, const char* name, std::size_t count) {
+  std::vector<double> values;
+  if (!NumbersAttribute(element, name, count, &values)) {
+    Fail(element, std::string("attribute ") + name + " is missing");
+  }
+  for (double v : values) {
+    if (!(v > 0.0)) {
+      Fail(element, std::string(name) + "=\"" + element->Attribute(name) + "\" must be > 0");
+    }
+  }
+}
+
+// The numeric attributes urdfdom reads, by element name: checked wherever they occur in links and
+// joints (visuals included: NaN anywhere is an error).
+void CheckNumbers(const XMLElement* element) {
+  const std::string tag = element->Name();
+  std::vector<double> values;
+  if (tag == "origin") {
+    NumbersAttribute(element, "xyz", 3, &values);
+    NumbersAttribute(element, "rpy", 3, &values);
+  } else if (tag == "mass") {
+    RequirePositive(element, "value", 1);
+  } else if (tag == "inertia") {
+    for (const char* name : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
+      if (!NumbersAttribute(element, name, 1, &values)) {
+        Fail(element, std::string("attribute ") + name + " is missing");
+      }
+    }
+  } else if (tag == "sphere") {
+    RequirePositive(element, "radius", 1);
+  } else if (tag == "cylinder") {
+    RequirePositive(element, "radius", 1);
+    RequirePositive(element, "length", 1);
+  } else if (tag == "box") {
+    RequirePositive(element, "size", 3);
+  } else if (tag == "mesh" || tag == "axis") {
+    NumbersAttribute(element, tag == "mesh" ? "scale" : "xyz", 3, &values);
+  } else if (tag == "color") {
+    NumbersAttribute(element, "rgba", 4, &values);
+  } else {
+    for (const char* name : {"lower", "upper", "effort", "velocity", "damping", "friction",
+                             "soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity",
+                             "rising", "falling", "multiplier", "offset"}) {
+      NumbersAttribute(element, name, 1, &values);
+    }
+  }
+  if (tag == "inertial") {
+    if (element->FirstChildElement("mass") == nullptr) Fail(element, "no <mass>");
+    if (element->FirstChildElement("inertia") == nullptr) Fail(element, "no <inertia>");
+  }
+  for (const XMLElement* child = element->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    CheckNumbers(child);
+  }
+}
+
+// The text of `element` as one number in [low, high].
+double TextNumber(const XMLElement* element, double low, double high, const char* range) {
+  const std::string text = element->GetText() != nullptr ? element->GetText() : "";
+  const std::vector<std::string> tokens = Tokens(text.c_str());
+  double value = 0.0;
+  if (tokens.size() != 1 || !ParseFiniteNumber(tokens[0], &value)) {
+    Fail(element, "\"" + text + "\" is not a finite number");
+  }
+  if (value < low || value > high) {
+    Fail(element, tokens[0] + " is out of range, expected " + range);
+  }
+  return value;
+}
+
+const XMLElement* Child(const XMLElement* element, std::initializer_list<const char*> path) {
+  for (const char* name : path) {
+    if (element == nullptr) return nullptr;
+    element = element->FirstChildElement(name);
+  }
+  return element;
+}
+
+constexpr double kInf = HUGE_VAL;
+
+// <gazebo reference="link">: surface friction of the link's collisions.
+void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std::string>* warnings) {
+  // legacy shortcut <mu1>, still common in URDFs written for Gazebo classic
+  if (const XMLElement* mu1 = gazebo->FirstChildElement("mu1")) {
+    surface->mu = TextNumber(mu1, 0.0, kInf, ">= 0");
+  }
+  for (const XMLElement* collision = gazebo->FirstChildElement("collision"); collision != nullptr;
+       collision = collision->NextSiblingElement("collision")) {
+    const XMLElement* friction = Child(collision, {"surface", "friction"});
+    if (friction == nullptr) continue;
+    if (const XMLElement* mu = Child(friction, {"ode", "mu"})) {
+      surface->mu = TextNumber(mu, 0.0, kInf, ">= 0");
+    }
+    if (const XMLElement* mu2 = Child(friction, {"ode", "mu2"})) {
+      if (TextNumber(mu2, 0.0, kInf, ">= 0") != surface->mu) {
+        warnings->push_back("urdf: " + Describe(mu2) +
+                            ": anisotropic friction is not supported, using mu");
+      }
+    }
+    if (const XMLElement* torsional = friction->FirstChildElement("torsional")) {
+      if (const XMLElement* c = torsional->FirstChildElement("coefficient")) {
+        surface->torsional_coefficient = TextNumber(c, 0.0, kInf, ">= 0");
+        surface->has_torsional_coefficient = true;
+      }
+      if (const XMLElement* r = torsional->FirstChildElement("patch_radius")) {
+        surface->patch_radius = TextNumber(r, 0.0, kInf, ">= 0");
+      }
+      if (const XMLElement* use = torsional->FirstChildElement("use_patch_radius")) {
+        const char* text = use->GetText();
+        if (text != nullptr && (std::string(text) == "false" || std::string(text) == "0")) {
+          warnings->push_back("urdf: " + Describe(use) +
+                              ": surface_radius torsional friction is not supported, "
+                              "using patch_radius");
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+bool ParseFiniteNumber(std::string_view text, double* value) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), *value);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(*value);
+}
+
+UrdfXml ParseUrdfXml(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw UrdfError(std::string("urdf: not well-formed XML: ") + doc.ErrorStr());
+  }
+  const XMLElement* robot = doc.RootElement();
+  if (robot == nullptr) throw UrdfError("urdf: no XML element (empty document)");
+  if (std::string(robot->Name()) != "robot") {
+    throw UrdfError("urdf: the root element is <" + std::string(robot->Name()) +
+                    ">, expected <robot> (line " + std::to_string(robot->GetLineNum()) + ")");
+  }
+  UrdfXml result;
+  for (const XMLElement* e = robot->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "link" || tag == "joint") CheckNumbers(e);
+  }
+  // extension tags, by link name (several blocks for one link merge, later ones win)
+  for (const XMLElement* e = robot->FirstChildElement("gazebo"); e != nullptr;
+       e = e->NextSiblingElement("gazebo")) {
+    if (const char* ref = e->Attribute("reference")) {
+      ReadGazebo(e, &result.surfaces[ref], &result.warnings);
+    }
+  }
+  for (const XMLElement* e = robot->FirstChildElement("nonsmooth_sim"); e != nullptr;
+       e = e->NextSiblingElement("nonsmooth_sim")) {
+    const char* ref = e->Attribute("reference");
+    if (ref == nullptr) Fail(e, "attribute reference (a link name) is missing");
+    if (const XMLElement* r = e->FirstChildElement("restitution")) {
+      result.surfaces[ref].restitution = TextNumber(r, 0.0, 1.0, "[0, 1]");
+    }
+  }
+  return result;
+}
+
+}  // namespace nonsmooth_sim::node

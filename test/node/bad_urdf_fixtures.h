@@ -1,0 +1,36 @@
+// The malformed URDF fixtures (test/node/fixtures) and what their one error line must say.
+// Shared by the converter test (SceneFromUrdf throws) and the rostest that starts the node with
+// each of them (exit code 1, the same line on stderr).
+#ifndef NONSMOOTH_SIM_TEST_NODE_BAD_URDF_FIXTURES_H_
+#define NONSMOOTH_SIM_TEST_NODE_BAD_URDF_FIXTURES_H_
+
+#include <string>
+#include <vector>
+
+namespace nonsmooth_sim::node::test {
+
+struct BadUrdf {
+  std::string file;                   // under test/node/fixtures
+  std::vector<std::string> expected;  // substrings of the error line: element and reason
+};
+
+inline const std::vector<BadUrdf>& BadUrdfFixtures() {
+  static const std::vector<BadUrdf> fixtures = {
+      {"not_xml.urdf", {"not well-formed XML", "Line number=3", "inertial"}},
+      {"not_robot.urdf", {"root element is <model>", "expected <robot>"}},
+      {"no_inertial.urdf", {"link \"tippe_top\"", "no <inertial>"}},
+      {"negative_mass.urdf", {"link \"tippe_top\" > inertial > mass", "must be > 0"}},
+      {"non_pd_inertia.urdf", {"link \"tippe_top\" > inertial > inertia",
+                               "not positive definite"}},
+      {"zero_radius.urdf", {"collision \"big_sphere\" > geometry > sphere", "radius=\"0\"",
+                            "must be > 0"}},
+      {"nan_origin.urdf", {"collision \"peg_sphere\" > origin", "\"nan\" is not a finite number"}},
+      {"nan_inertia.urdf", {"inertial > inertia", "iyy", "\"NaN\" is not a finite number"}},
+      {"nan_friction.urdf", {"gazebo reference=\"tippe_top\"", "mu", "not a finite number"}},
+  };
+  return fixtures;
+}
+
+}  // namespace nonsmooth_sim::node::test
+
+#endif  // NONSMOOTH_SIM_TEST_NODE_BAD_URDF_FIXTURES_H_

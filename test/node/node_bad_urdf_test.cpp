@@ -1,0 +1,166 @@
+// Each malformed URDF fixture and each bad parameter stops the node at start-up with exit code 1
+// and exactly one error line on stderr naming the element (or parameter) and the reason. The
+// good URDF with the same command line starts (the cases fail for their defect, not the setup).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bad_urdf_fixtures.h"
+
+extern char** environ;
+
+namespace nonsmooth_sim::node::test {
+namespace {
+
+constexpr double kExitTimeout = 20.0;  // [wall s] a failing start-up must end within this
+
+struct NodeRun {
+  bool exited = false;  // false: still running at the timeout (then stopped with SIGINT)
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string ReadAll(int fd) {
+  std::string text;
+  char buffer[4096];
+  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) text.append(buffer, n);
+  return text;
+}
+
+// Starts the node with `args` (no shell). `started`, if given, is polled while the node runs;
+// once it holds the node is stopped with SIGINT. Waits up to kExitTimeout for the node to exit.
+NodeRun RunNode(const std::vector<std::string>& args, const std::function<bool()>& started = {}) {
+  int out_pipe[2], err_pipe[2];
+  EXPECT_EQ(pipe(out_pipe), 0);
+  EXPECT_EQ(pipe(err_pipe), 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, out_pipe[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, err_pipe[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, out_pipe[0]);
+  posix_spawn_file_actions_addclose(&actions, err_pipe[0]);
+  std::vector<std::string> argv_strings = {NONSMOOTH_SIM_NODE_EXECUTABLE};
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(out_pipe[1]);
+  close(err_pipe[1]);
+  NodeRun run;
+  EXPECT_EQ(spawned, 0) << argv[0];
+  if (spawned != 0) return run;
+  int status = 0;
+  bool stopped = false;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kExitTimeout);
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (!stopped && (ros::WallTime::now() > end || (started && started()))) {
+      kill(pid, SIGINT);
+      stopped = true;
+      waitpid(pid, &status, 0);
+      break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  run.exited = !stopped;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = ReadAll(out_pipe[0]);
+  run.err = ReadAll(err_pipe[0]);
+  close(out_pipe[0]);
+  close(err_pipe[0]);
+  return run;
+}
+
+std::vector<std::string> NonEmptyLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  return lines;
+}
+
+std::string Fixture(const std::string& file) {
+  return std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/test/node/fixtures/" + file;
+}
+
+void ExpectOneErrorLine(const NodeRun& run, const std::vector<std::string>& expected,
+                        const std::string& label) {
+  ASSERT_TRUE(run.exited) << label << ": still running after " << kExitTimeout << " s";
+  EXPECT_EQ(run.exit_code, 1) << label;
+  const std::vector<std::string> lines = NonEmptyLines(run.err);
+  ASSERT_EQ(lines.size(), 1u) << label << ": stderr was:\n" << run.err;
+  EXPECT_NE(lines[0].find("[FATAL]"), std::string::npos) << label << ": " << lines[0];
+  for (const std::string& part : expected) {
+    EXPECT_NE(lines[0].find(part), std::string::npos)
+        << label << ": \"" << part << "\" not in: " << lines[0];
+  }
+  EXPECT_TRUE(NonEmptyLines(run.out).empty()) << label << ": stdout was:\n" << run.out;
+}
+
+TEST(NodeBadUrdf, EachMalformedFixtureStopsTheNodeWithOneClearLine) {
+  int k = 0;
+  for (const BadUrdf& fixture : BadUrdfFixtures()) {
+    const NodeRun run = RunNode({"__name:=bad_urdf_" + std::to_string(k++),
+                             "_urdf_file:=" + Fixture(fixture.file)});
+    ExpectOneErrorLine(run, fixture.expected, fixture.file);
+  }
+}
+
+TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
+  const std::string urdf = "_urdf_file:=" + std::string(NONSMOOTH_SIM_SOURCE_DIR) +
+                           "/urdf/tippe_top.urdf";
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_0", urdf, "_time_step:=-0.001"}),
+                     {"time_step"}, "time_step");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_1", urdf, "_friction_set:=sticky"}),
+                     {"~friction_set", "unknown friction set \"sticky\""}, "friction_set");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_2", urdf, "_real_time_factor:=-1.0"}),
+                     {"~real_time_factor", ">= 0"}, "real_time_factor");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_3", urdf, "_initial/inclination:=4.0"}),
+                     {"inclination", "[0, pi]"}, "initial/inclination");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_4", urdf, "_tf_rate:=abc"}),
+                     {"~tf_rate", "expected a number"}, "tf_rate");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_5", "_urdf_file:=" + Fixture("absent.urdf")}),
+                     {"~urdf_file", "cannot read"}, "urdf_file");
+  // neither ~urdf_file nor robot_description (this test's launch file sets none)
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
+                     "no URDF");
+}
+
+TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {
+  // the node comes up (its services appear) and stops cleanly on SIGINT: the failures above are
+  // the fixtures' own
+  bool services_up = false;
+  const NodeRun run = RunNode({"__name:=good_urdf",
+                           "_urdf_file:=" + std::string(NONSMOOTH_SIM_SOURCE_DIR) +
+                               "/urdf/tippe_top.urdf",
+                           "_paused:=true"},
+                          [&] {
+                            services_up = ros::service::exists("/good_urdf/get_state", false);
+                            return services_up;
+                          });
+  EXPECT_TRUE(services_up) << "stderr:\n" << run.err;
+  EXPECT_FALSE(run.exited) << "exit code " << run.exit_code << ", stderr:\n" << run.err;
+  EXPECT_EQ(run.exit_code, 0) << "stderr:\n" << run.err;
+}
+
+}  // namespace
+}  // namespace nonsmooth_sim::node::test
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_bad_urdf_test");
+  ros::Time::init();
+  return RUN_ALL_TESTS();
+}

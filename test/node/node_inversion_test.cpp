@@ -1,0 +1,153 @@
+// The Tippe-Top run through the node as fast as possible inverts exactly like the headless core
+// simulator with the same scene and settings: every published state (one per step) equals the
+// core's at that step, so the inversion times agree (to 1e-9 s, in fact exactly). The node
+// publishes every message it advertises: ~state at every step, ~contacts and /tf at 1 kHz, with
+// consecutive sequence numbers and no gaps.
+#include <gtest/gtest.h>
+#include <std_srvs/Empty.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cmath>
+
+#include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/GetFrictionSet.h"
+#include "nonsmooth_sim/GetSolverProperties.h"
+#include "nonsmooth_sim/StepSimulation.h"
+#include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/core/tippe_top.h"
+#include "ros_test_helpers.h"
+
+namespace nonsmooth_sim::node::test {
+namespace {
+
+constexpr double kDuration = 1.6;        // node_inversion_test.test: ~duration [s]
+constexpr double kPegTouchdown = 2.4;    // θ > 2.4 rad: the peg touches down (inversion)
+constexpr double kInverted = 2.9;        // θ > 2.9 rad: spinning on the peg
+constexpr std::int64_t kContactsPeriod = 10;  // 1 kHz at Δt = 1e-4
+
+// First time θ exceeds `level`, or -1.
+template <typename Times, typename Thetas>
+double FirstAbove(const Times& t, const Thetas& theta, double level) {
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    if (theta[i] > level) return t[i];
+  }
+  return -1.0;
+}
+
+TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessages) {
+  ros::NodeHandle nh;
+  Recorder<SimulationState> states(nh, kNode + "state", 1000000);
+  Recorder<ContactInfoArray> contacts(nh, kNode + "contacts", 1000000);
+  Recorder<tf2_msgs::TFMessage> tf(nh, "/tf", 1000000);
+
+  // the node's settings, for the headless reference
+  const GetSolverProperties::Response p =
+      Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response;
+  const GetFrictionSet::Response sets = Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
+  ASSERT_EQ(p.time_step, 1e-4);
+  TippeTopParameters parameters;
+  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
+  SimulatorOptions options;
+  options.time_step = p.time_step;
+  options.solver.type = *SolverTypeFromName(p.solver);
+  options.solver.tolerance_rel = p.tolerance;
+  options.solver.tolerance_abs = p.tolerance_abs;
+  options.solver.max_iterations = p.max_iterations;
+  options.solver.relaxation = p.relaxation;
+  options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
+
+  // connected: a subscriber counts as connected before the node has its link, so step (paused)
+  // until all three streams flow
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        if (states.Count() > 0 && contacts.Count() > 0 && tf.Count() > 0) return true;
+        StepSimulation step;
+        step.request.steps = kContactsPeriod;
+        Call(nh, kNode + "step", step);
+        return WaitFor([&] { return contacts.Count() > 0 && tf.Count() > 0; }, 0.2);
+      },
+      20.0));
+
+  // as fast as possible until the node pauses itself at ~duration
+  Call<std_srvs::Empty>(nh, kNode + "unpause_physics");
+  ASSERT_TRUE(states.WaitForMessage(
+      [&](const SimulationState& m) { return m.sim_time >= kDuration - 0.5 * p.time_step; }, 45.0))
+      << "the node did not reach t = " << kDuration << " s";
+  const std::vector<SimulationState> received = states.Messages();
+  const std::int64_t total_steps = std::llround(received.back().sim_time / p.time_step);
+  // the last ~contacts and /tf of the run (at the last multiple of 10 steps) arrive too
+  const std::int64_t last_publish = total_steps / kContactsPeriod * kContactsPeriod;
+  ASSERT_TRUE(contacts.WaitForMessage(
+      [&](const ContactInfoArray& m) {
+        return std::llround(m.sim_time / p.time_step) == last_publish;
+      },
+      20.0));
+  ASSERT_TRUE(tf.WaitForMessage(
+      [&](const tf2_msgs::TFMessage& m) {
+        return std::llround(m.transforms[0].header.stamp.toSec() / p.time_step) == last_publish;
+      },
+      20.0));
+
+  // Nothing dropped: roscpp numbers the messages of each topic (header.seq) and the sim times
+  // step on by the advertised period (~state every step, ~contacts and /tf every 10 steps).
+  auto step_of = [&](double sim_time) { return std::llround(sim_time / p.time_step); };
+  for (std::size_t i = 1; i < received.size(); ++i) {
+    ASSERT_EQ(received[i].header.seq, received[i - 1].header.seq + 1) << "gap at " << i;
+    ASSERT_EQ(step_of(received[i].sim_time), step_of(received[i - 1].sim_time) + 1) << i;
+  }
+  const std::vector<ContactInfoArray> contact_messages = contacts.Messages();
+  for (std::size_t i = 1; i < contact_messages.size(); ++i) {
+    ASSERT_EQ(contact_messages[i].header.seq, contact_messages[i - 1].header.seq + 1) << i;
+    ASSERT_EQ(step_of(contact_messages[i].sim_time),
+              step_of(contact_messages[i - 1].sim_time) + kContactsPeriod) << i;
+  }
+  const std::vector<tf2_msgs::TFMessage> transforms = tf.Messages();
+  for (std::size_t i = 1; i < transforms.size(); ++i) {
+    ASSERT_EQ(step_of(transforms[i].transforms[0].header.stamp.toSec()),
+              step_of(transforms[i - 1].transforms[0].header.stamp.toSec()) + kContactsPeriod)
+        << i;
+  }
+  EXPECT_GT(received.size(), 15000u);  // 1.6 s at one state per step
+
+  // the headless core, step by step
+  Simulator reference(MakeTippeTopScene(parameters), options);
+  std::vector<double> ref_time(total_steps + 1, 0.0), ref_theta(total_steps + 1, 0.0);
+  ref_theta[0] = Inclination(reference.state()[0]);
+  for (std::int64_t k = 1; k <= total_steps; ++k) {
+    reference.Step();
+    ref_time[k] = reference.time();
+    ref_theta[k] = Inclination(reference.state()[0]);
+  }
+  int mismatches = 0;
+  std::vector<double> node_time, node_theta;
+  for (const SimulationState& m : received) {
+    const std::int64_t k = step_of(m.sim_time);
+    mismatches += m.sim_time != ref_time[k] || m.bodies[0].inclination != ref_theta[k];
+    node_time.push_back(m.sim_time);
+    node_theta.push_back(m.bodies[0].inclination);
+  }
+  EXPECT_EQ(mismatches, 0) << "of " << received.size() << " states";
+
+  // the same inversion, judged over the steps the node published
+  const std::int64_t first = step_of(received.front().sim_time);
+  const std::vector<double> ref_t(ref_time.begin() + first, ref_time.end());
+  const std::vector<double> ref_th(ref_theta.begin() + first, ref_theta.end());
+  const double t_node = FirstAbove(node_time, node_theta, kPegTouchdown);
+  const double t_ref = FirstAbove(ref_t, ref_th, kPegTouchdown);
+  ASSERT_GT(t_ref, 0.0) << "the headless Tippe-Top did not invert within " << kDuration << " s";
+  EXPECT_NEAR(t_node, t_ref, 1e-9);
+  EXPECT_NEAR(FirstAbove(node_time, node_theta, kInverted), FirstAbove(ref_t, ref_th, kInverted),
+              1e-9);
+  RecordProperty("inversion_time_s", std::to_string(t_node));
+}
+
+}  // namespace
+}  // namespace nonsmooth_sim::node::test
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_inversion_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}

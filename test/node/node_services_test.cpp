@@ -1,0 +1,290 @@
+// Services: ~set_friction_set mid-run changes the law reported in ~contacts and the dynamics
+// (exactly as the core does when switched at the same step); unknown names, NaN/Inf and
+// out-of-range values are rejected with a message and change nothing; ~reset twice with the same
+// initial conditions gives bit-identical trajectories; reset_world / reset_simulation keep the
+// time and restore what they promise; a reset clears the contact markers.
+#include <gtest/gtest.h>
+#include <std_srvs/Empty.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <limits>
+
+#include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/GetFrictionSet.h"
+#include "nonsmooth_sim/GetSimulationState.h"
+#include "nonsmooth_sim/GetSolverProperties.h"
+#include "nonsmooth_sim/ResetState.h"
+#include "nonsmooth_sim/SetFrictionSet.h"
+#include "nonsmooth_sim/SetSolverProperties.h"
+#include "nonsmooth_sim/StepSimulation.h"
+#include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/node/conversions.h"
+#include "ros_test_helpers.h"
+
+namespace nonsmooth_sim::node::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+class NodeServices : public testing::Test {
+ protected:
+  StepSimulation Step(std::uint32_t n) {
+    StepSimulation srv;
+    srv.request.steps = n;
+    srv = Call(nh_, kNode + "step", srv);
+    EXPECT_TRUE(srv.response.success) << srv.response.status_message;
+    return srv;
+  }
+  SimulationState State() {
+    return Call<GetSimulationState>(nh_, kNode + "get_state").response.state;
+  }
+  ResetState::Response Reset(ResetState srv = ResetState()) {
+    return Call(nh_, kNode + "reset", srv).response;
+  }
+  SetFrictionSet::Response SetSet(const std::string& name, const std::string& contact = "") {
+    SetFrictionSet srv;
+    srv.request.friction_set = name;
+    srv.request.contact = contact;
+    return Call(nh_, kNode + "set_friction_set", srv).response;
+  }
+  GetFrictionSet::Response GetSets() {
+    return Call<GetFrictionSet>(nh_, kNode + "get_friction_set").response;
+  }
+  GetSolverProperties::Response Solver() {
+    return Call<GetSolverProperties>(nh_, kNode + "get_solver_properties").response;
+  }
+  SetSolverProperties::Response SetSolver(const SetSolverProperties& srv) {
+    return Call(nh_, kNode + "set_solver_properties", SetSolverProperties(srv)).response;
+  }
+  /// The core simulator with the node's scene (urdf/tippe_top.urdf = MakeTippeTopScene()) and
+  /// the node's current solver settings.
+  Simulator Headless() {
+    const GetSolverProperties::Response p = Solver();
+    SimulatorOptions o;
+    o.time_step = p.time_step;
+    o.solver.type = *SolverTypeFromName(p.solver);
+    o.solver.tolerance_rel = p.tolerance;
+    o.solver.tolerance_abs = p.tolerance_abs;
+    o.solver.max_iterations = p.max_iterations;
+    o.solver.relaxation = p.relaxation;
+    o.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
+    return Simulator(MakeTippeTopScene(), o);
+  }
+  static SimulationState StateOf(const Simulator& sim) {
+    SimulationState msg;
+    FillState(sim, true, "world", &msg);
+    return msg;
+  }
+  /// Steps until `recorder` has a message: a subscriber counts as connected before the node
+  /// has its link.
+  template <typename M>
+  void WarmUp(const Recorder<M>& recorder, std::uint32_t steps_per_try) {
+    ASSERT_TRUE(WaitFor(
+        [&] {
+          if (recorder.Count() > 0) return true;
+          Step(steps_per_try);
+          return WaitFor([&] { return recorder.Count() > 0; }, 0.2);
+        },
+        20.0));
+  }
+
+  ros::NodeHandle nh_;
+};
+
+TEST_F(NodeServices, FrictionSetSwitchedMidRunChangesTheLawAndTheDynamics) {
+  Recorder<ContactInfoArray> contacts(nh_, kNode + "contacts");
+  WarmUp(contacts, 10);
+  ASSERT_TRUE(Reset().success);
+  const StepSimulation before = Step(3000);
+  ASSERT_TRUE(contacts.WaitForMessage(
+      [&](const ContactInfoArray& m) { return m.sim_time == before.response.sim_time; }, 20.0));
+  ContactInfoArray last_before = contacts.Messages().back();
+  EXPECT_EQ(last_before.contacts[0].friction_set, "sphere");
+  EXPECT_TRUE(last_before.contacts[0].closed);
+  EXPECT_NE(last_before.contacts[0].drilling_percussion, 0.0);  // the spinning top drills
+
+  const SetFrictionSet::Response set = SetSet("coulomb");
+  ASSERT_TRUE(set.success) << set.status_message;
+  EXPECT_NE(set.status_message.find("coulomb"), std::string::npos) << set.status_message;
+  const GetFrictionSet::Response sets = GetSets();
+  EXPECT_EQ(sets.contacts, (std::vector<std::string>{"big_sphere", "peg_sphere"}));
+  EXPECT_EQ(sets.friction_sets, (std::vector<std::string>{"coulomb", "coulomb"}));
+
+  contacts.Clear();
+  const StepSimulation after = Step(3000);
+  const SimulationState switched = State();
+  ASSERT_TRUE(contacts.WaitForMessage(
+      [&](const ContactInfoArray& m) { return m.sim_time == after.response.sim_time; }, 20.0));
+  for (const ContactInfoArray& m : contacts.Messages()) {
+    EXPECT_EQ(m.contacts[0].friction_set, "coulomb");
+    EXPECT_EQ(m.contacts[0].drilling_percussion, 0.0);  // coulomb has no drilling component
+  }
+
+  // the same run without the switch
+  ASSERT_TRUE(SetSet("sphere").success);
+  ASSERT_TRUE(Reset().success);
+  Step(6000);
+  const SimulationState unswitched = State();
+  EXPECT_NE(switched.bodies[0].inclination, unswitched.bodies[0].inclination);
+
+  // both runs are the core's, switched at the same step or not at all
+  Simulator reference = Headless();
+  for (int k = 0; k < 3000; ++k) reference.Step();
+  reference.SetFrictionSet(FrictionSet::kCoulomb);
+  for (int k = 0; k < 3000; ++k) reference.Step();
+  ExpectSameBodies(switched, StateOf(reference));
+  Simulator unswitched_reference = Headless();
+  for (int k = 0; k < 6000; ++k) unswitched_reference.Step();
+  ExpectSameBodies(unswitched, StateOf(unswitched_reference));
+}
+
+TEST_F(NodeServices, FrictionSetOfOneContact) {
+  const SetFrictionSet::Response set = SetSet("exact", "peg_sphere");
+  ASSERT_TRUE(set.success) << set.status_message;
+  const GetFrictionSet::Response sets = GetSets();
+  EXPECT_EQ(sets.friction_sets, (std::vector<std::string>{"sphere", "exact"}));
+  ASSERT_TRUE(SetSet("sphere", "peg_sphere").success);
+}
+
+TEST_F(NodeServices, RejectedRequestsChangeNothing) {
+  Step(500);
+  const SimulationState state = State();
+  const GetFrictionSet::Response sets = GetSets();
+  const GetSolverProperties::Response solver = Solver();
+
+  auto rejected = [](bool success, const std::string& message, const std::string& expected) {
+    EXPECT_FALSE(success) << message;
+    EXPECT_NE(message.find(expected), std::string::npos)
+        << "\"" << expected << "\" not in: " << message;
+  };
+  SetFrictionSet::Response set = SetSet("sticky");
+  rejected(set.success, set.status_message, "unknown friction set \"sticky\"");
+  rejected(set.success, set.status_message, "coulomb, cylinder, ellipsoid, sphere, exact");
+  set = SetSet("exact", "handle");
+  rejected(set.success, set.status_message, "unknown contact \"handle\"");
+
+  ResetState reset;
+  reset.request.inclination = {kNaN};
+  ResetState::Response r = Reset(reset);
+  rejected(r.success, r.status_message, "inclination");
+  reset.request.inclination = {4.0};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, "[0, pi]");
+  reset = ResetState();
+  reset.request.spin = {kInf};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, "spin");
+  reset = ResetState();
+  reset.request.position = {1.0, 2.0};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, "position: expected 0 (default) or 3 values");
+  reset = ResetState();
+  reset.request.orientation = {0.0, 0.0, 0.0, 0.0};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, "orientation");
+  reset = ResetState();
+  reset.request.body = "handle";
+  r = Reset(reset);
+  rejected(r.success, r.status_message, "\"handle\" is not a free body");
+
+  SetSolverProperties solver_request;
+  solver_request.request.time_step = {1.0};
+  SetSolverProperties::Response s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "time_step");
+  solver_request.request.time_step = {-1e-4};
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "time_step");
+  solver_request.request.time_step = {kNaN};
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "time_step");
+  solver_request = SetSolverProperties();
+  solver_request.request.relaxation = {2.5};
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "relaxation");
+  solver_request = SetSolverProperties();
+  solver_request.request.solver = "newton";
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "unknown solver \"newton\"");
+  // a valid field next to an invalid one: the whole request is rejected
+  solver_request = SetSolverProperties();
+  solver_request.request.tolerance = {1e-4};
+  solver_request.request.max_iterations = {0};
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, "max_iterations");
+
+  const SimulationState after = State();
+  EXPECT_EQ(after.sim_time, state.sim_time);
+  ExpectSameBodies(after, state);
+  const GetFrictionSet::Response sets_after = GetSets();
+  EXPECT_EQ(sets_after.friction_sets, sets.friction_sets);
+  EXPECT_EQ(Solver(), solver);
+}
+
+TEST_F(NodeServices, ResetTwiceWithTheSameInitialConditionsGivesIdenticalStates) {
+  ResetState reset;
+  reset.request.inclination = {0.2};
+  reset.request.spin = {150.0};
+  ASSERT_TRUE(Reset(reset).success);
+  Step(1500);
+  const SimulationState first = State();
+  Step(700);  // leaves warm starts and contact history behind
+  ASSERT_TRUE(Reset(reset).success);
+  Step(1500);
+  const SimulationState second = State();
+  EXPECT_GT(second.sim_time, first.sim_time);
+  ExpectSameBodies(first, second);
+
+  // and other initial conditions give another state
+  reset.request.spin = {149.0};
+  ASSERT_TRUE(Reset(reset).success);
+  Step(1500);
+  EXPECT_NE(State().bodies[0].pose.orientation, first.bodies[0].pose.orientation);
+}
+
+TEST_F(NodeServices, ResetWorldAndResetSimulationKeepTheTime) {
+  const GetSolverProperties::Response configured = Solver();
+  ASSERT_TRUE(SetSet("coulomb").success);
+  SetSolverProperties tolerance;
+  tolerance.request.tolerance = {1e-6};
+  ASSERT_TRUE(SetSolver(tolerance).success);
+  Step(100);
+  const double time = State().sim_time;
+
+  Call<std_srvs::Empty>(nh_, kNode + "reset_world");
+  const SimulationState world = State();
+  EXPECT_EQ(world.sim_time, time);                        // time kept
+  ExpectSameBodies(world, StateOf(Simulator(MakeTippeTopScene(), SimulatorOptions{})));
+  EXPECT_EQ(GetSets().friction_sets[0], "coulomb");       // settings kept
+  EXPECT_EQ(Solver().tolerance, 1e-6);
+
+  Recorder<visualization_msgs::MarkerArray> markers(nh_, kNode + "contact_markers");
+  ASSERT_TRUE(WaitFor([&] { return markers.Connected(); }, 20.0));
+  WarmUp(markers, 400);  // ~markers_rate 30 Hz: a message every 333 steps
+  Call<std_srvs::Empty>(nh_, kNode + "reset_simulation");
+  const SimulationState simulation = State();
+  EXPECT_EQ(simulation.sim_time, State().sim_time);
+  EXPECT_GE(simulation.sim_time, time);                   // never back
+  ExpectSameBodies(simulation, StateOf(Simulator(MakeTippeTopScene(), SimulatorOptions{})));
+  EXPECT_EQ(GetSets().friction_sets[0], "sphere");        // the configured law again
+  EXPECT_EQ(Solver(), configured);                        // the configured solver again
+  // rviz is told to forget the old arrows
+  EXPECT_TRUE(markers.WaitForMessage(
+      [](const visualization_msgs::MarkerArray& m) {
+        return !m.markers.empty() &&
+               m.markers[0].action == visualization_msgs::Marker::DELETEALL;
+      },
+      20.0));
+  EXPECT_GT(Step(10).response.sim_time, simulation.sim_time);
+}
+
+}  // namespace
+}  // namespace nonsmooth_sim::node::test
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_services_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,96 @@
+// Helpers for the node rostests: waits with timeouts (never fixed sleeps), message recorders,
+// service calls that fail the test when the service itself is unreachable.
+#ifndef NONSMOOTH_SIM_TEST_NODE_ROS_TEST_HELPERS_H_
+#define NONSMOOTH_SIM_TEST_NODE_ROS_TEST_HELPERS_H_
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "nonsmooth_sim/SimulationState.h"
+
+namespace nonsmooth_sim::node::test {
+
+/// The node's private namespace in the launch file.
+inline const std::string kNode = "/nonsmooth_sim/";
+
+/// Polls `condition` every millisecond until it holds or `timeout` wall seconds pass.
+inline bool WaitFor(const std::function<bool()>& condition, double timeout) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (!condition()) {
+    if (ros::WallTime::now() > end || !ros::ok()) return false;
+    ros::WallDuration(0.001).sleep();
+  }
+  return true;
+}
+
+/// Keeps every message of one topic (thread safe; callbacks run in an AsyncSpinner).
+template <typename M>
+class Recorder {
+ public:
+  Recorder(ros::NodeHandle& nh, const std::string& topic, int queue = 100000) {
+    sub_ = nh.subscribe<M>(topic, queue, [this](const typename M::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      messages_.push_back(*m);
+    });
+  }
+  std::vector<M> Messages() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
+  }
+  std::size_t Count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_.size();
+  }
+  void Clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.clear();
+  }
+  bool WaitForCount(std::size_t n, double timeout) const {
+    return WaitFor([&] { return Count() >= n; }, timeout);
+  }
+  /// Waits until a message satisfies `predicate`.
+  bool WaitForMessage(const std::function<bool(const M&)>& predicate, double timeout) const {
+    return WaitFor(
+        [&] {
+          std::lock_guard<std::mutex> lock(mutex_);
+          for (const M& m : messages_) {
+            if (predicate(m)) return true;
+          }
+          return false;
+        },
+        timeout);
+  }
+  bool Connected() const { return sub_.getNumPublishers() > 0; }
+
+ private:
+  ros::Subscriber sub_;
+  mutable std::mutex mutex_;
+  std::vector<M> messages_;
+};
+
+/// Calls service `name` (waiting up to 20 s for it); a transport failure fails the test.
+template <typename S>
+S Call(ros::NodeHandle& nh, const std::string& name, S srv = S()) {
+  ros::ServiceClient client = nh.serviceClient<S>(name);
+  EXPECT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name;
+  EXPECT_TRUE(client.call(srv)) << name;
+  return srv;
+}
+
+/// The bodies of two states are bit for bit equal (poses, twists and derived quantities).
+inline void ExpectSameBodies(const SimulationState& a, const SimulationState& b) {
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQ(a.bodies[i], b.bodies[i]) << "body " << a.bodies[i].name;
+  }
+  EXPECT_EQ(a.energy, b.energy);
+}
+
+}  // namespace nonsmooth_sim::node::test
+
+#endif  // NONSMOOTH_SIM_TEST_NODE_ROS_TEST_HELPERS_H_
