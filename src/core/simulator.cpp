@@ -21,6 +21,13 @@ std::vector<BodyState> Normalized(std::vector<BodyState> state) {
   return state;
 }
 
+// What (13) and the free velocities produced from one body's q_B, u_B.
+bool MidpointIsFinite(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                      const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
+  return position.allFinite() && orientation.coeffs().allFinite() && linear.allFinite() &&
+         angular.allFinite();
+}
+
 }  // namespace
 
 void ValidateSimulatorOptions(const SimulatorOptions& options) {
@@ -92,8 +99,14 @@ void Simulator::Step(StepStatistics* out) {
   stats.closed_contacts = 0;
   stats.gyroscopic_passes = 0;
   stats.max_dt_omega = 0.0;
+  stats.explicit_gyroscopic_unsafe = false;
+  stats.gap_correction = 0.0;
+  stats.gap_correction_energy = 0.0;
+  stats.state_finite = !diverged_;
+  if (diverged_) return;
 
   // (13) q_M = q_B + Δt/2 F(q_B) u_B, and u_B + M⁻¹ h(q_M, u_B) Δt (14)
+  bool finite = true;
   for (std::size_t b = 0; b < state_.size(); ++b) {
     const BodyState& s = state_[b];
     const BodyInertia& body = inertia_[b];
@@ -109,6 +122,15 @@ void Simulator::Step(StepStatistics* out) {
     w.angular_contact.setZero();
     w.has_contact = false;
     stats.max_dt_omega = std::max(stats.max_dt_omega, dt * s.angular_velocity.norm());
+    finite = finite &&
+             MidpointIsFinite(w.position_mid, w.orientation_mid, w.linear_free, w.angular_free);
+  }
+  stats.explicit_gyroscopic_unsafe = options_.gyroscopic == GyroscopicScheme::kExplicit &&
+                                     stats.max_dt_omega > kExplicitGyroscopicMaxDtOmega;
+  if (!finite) {
+    diverged_ = true;
+    stats.state_finite = false;
+    return;
   }
 
   // (12) index set at the midpoint: g_i(q_M) ≤ 0
@@ -136,7 +158,7 @@ void Simulator::Step(StepStatistics* out) {
   stats.closed_contacts = static_cast<int>(closed_.size());
 
   if (size > 0) {
-    SolveContacts(size, &stats);
+    finite = SolveContacts(size, &stats);
   } else {
     stats.solver.friction_projected.clear();
     stats.solver.normal_projected.clear();
@@ -149,21 +171,71 @@ void Simulator::Step(StepStatistics* out) {
                                             Eigen::Vector3d::Zero(), dt, w.angular_free);
     }
   }
-
-  // (18) u_E, then (15) q_E = q_M + Δt/2 F(q_M) u_E with the quaternion renormalised
+  if (!finite || !ComputeEndState()) {
+    // the step is not taken: state, time and contact report stay as they were (SetState clears
+    // the warm start this step may have written)
+    diverged_ = true;
+    stats.state_finite = false;
+    return;
+  }
   for (std::size_t b = 0; b < state_.size(); ++b) {
     BodyState& s = state_[b];
     const BodyStep& w = body_step_[b];
-    s.linear_velocity = w.linear_free + inertia_[b].inverse_mass * w.linear_contact;
+    s.linear_velocity = w.linear_end;
     s.angular_velocity = w.angular_end;
-    s.position = w.position_mid + half_dt * s.linear_velocity;
-    s.orientation = AdvanceOrientation(w.orientation_mid, s.angular_velocity, half_dt).normalized();
+    s.position = w.position_end;
+    s.orientation = w.orientation_end;
   }
   time_ += dt;
+  if (options_.gap_correction) CorrectGaps(&stats);
   ReportContacts();
 }
 
-void Simulator::SolveContacts(int size, StepStatistics* stats) {
+bool Simulator::ComputeEndState() {
+  const double half_dt = 0.5 * options_.time_step;
+  bool finite = true;
+  // (18) u_E, then (15) q_E = q_M + Δt/2 F(q_M) u_E with the quaternion renormalised
+  for (std::size_t b = 0; b < state_.size(); ++b) {
+    BodyStep& w = body_step_[b];
+    w.linear_end = w.linear_free + inertia_[b].inverse_mass * w.linear_contact;
+    w.position_end = w.position_mid + half_dt * w.linear_end;
+    w.orientation_end =
+        AdvanceOrientation(w.orientation_mid, w.angular_end, half_dt).normalized();
+    w.rotation_end = w.orientation_end.toRotationMatrix();
+    // the squared norms too: a state whose energy overflows is as lost as one with an inf
+    finite = finite && std::isfinite(w.linear_end.squaredNorm()) &&
+             std::isfinite(w.angular_end.squaredNorm()) && w.position_end.allFinite() &&
+             w.orientation_end.coeffs().allFinite();
+  }
+  return finite;
+}
+
+void Simulator::CorrectGaps(StepStatistics* stats) {
+  // the highest end gap g(q_E) of each body's closed contacts (12): lifting by its depth (less the
+  // slop) leaves every contact that carried the body closed at ≤ -slop. Lifting by the deepest
+  // one instead opens the others of a tilted body on several contacts, which then falls back:
+  // measured on a block on four feet, a rocking limit cycle fed by m g Δz every other step.
+  for (BodyStep& w : body_step_) w.highest_closed_gap = -std::numeric_limits<double>::infinity();
+  for (const ClosedContact& a : closed_) {
+    const Sphere& sphere = scene_.spheres[static_cast<std::size_t>(a.sphere)];
+    BodyStep& w = body_step_[static_cast<std::size_t>(a.body)];
+    const double gap =
+        SphereGroundGap(w.position_end, w.rotation_end, sphere.center, sphere.radius);
+    w.highest_closed_gap = std::max(w.highest_closed_gap, gap);
+  }
+  for (std::size_t b = 0; b < state_.size(); ++b) {
+    if (!body_step_[b].has_contact) continue;
+    const double depth = -body_step_[b].highest_closed_gap;
+    if (!(depth > kGapCorrectionSlop)) continue;
+    // lift along the ground normal +ẑ to the slop; velocities unchanged
+    const double lift = depth - kGapCorrectionSlop;
+    state_[b].position.z() += lift;
+    stats->gap_correction = std::max(stats->gap_correction, lift);
+    stats->gap_correction_energy -= inertia_[b].mass * scene_.gravity.z() * lift;
+  }
+}
+
+bool Simulator::SolveContacts(int size, StepStatistics* stats) {
   const double dt = options_.time_step;
   ContactProblem& problem = ProblemOfSize(size);
   Eigen::VectorXd& lambda = lambdas_[static_cast<std::size_t>(size)];
@@ -213,6 +285,8 @@ void Simulator::SolveContacts(int size, StepStatistics* stats) {
       problem.c.segment(a.offset, a.dimension) =
           (gamma_free + restitution * a.gamma_begin).head(a.dimension);
     }
+    // a diverged state (huge ω) can overflow c; the solver would reject it
+    if (!problem.c.allFinite()) return false;
     // (17)
     solver_.Solve(problem, options_.solver, &lambda, &stats->solver);
     total_iterations += stats->solver.iterations;
@@ -273,12 +347,10 @@ void Simulator::SolveContacts(int size, StepStatistics* stats) {
   for (const ClosedContact& a : closed_) {
     warm_start_[a.sphere].head(a.dimension) = lambda.segment(a.offset, a.dimension);
   }
+  return true;
 }
 
 void Simulator::ReportContacts() {
-  for (std::size_t b = 0; b < state_.size(); ++b) {
-    body_step_[b].rotation_end = state_[b].orientation.toRotationMatrix();
-  }
   std::size_t next_closed = 0;
   for (std::size_t i = 0; i < scene_.spheres.size(); ++i) {
     const Sphere& sphere = scene_.spheres[i];
@@ -316,6 +388,7 @@ void Simulator::ReportContacts() {
 void Simulator::SetState(const std::vector<BodyState>& state) {
   ValidateState(scene_, state);
   state_ = Normalized(state);
+  diverged_ = false;
   for (Eigen::Vector4d& w : warm_start_) w.setZero();
   contacts_.assign(scene_.spheres.size(), ContactState{});
 }

@@ -173,6 +173,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
     r.Fail("gyroscopic", "unknown scheme \"" + name + "\", expected explicit or implicit_midpoint");
   }
   p.simulator.gyroscopic = *gyroscopic;
+  r.Bool("gap_correction", &p.simulator.gap_correction);
 
   // initial conditions
   r.String("initial/body", &p.initial_body);

@@ -83,6 +83,12 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
   PublishClock(/*flush=*/true);
   res.sim_time = sim_->time();
   res.stamp = StampOf(sim_->time());
+  if (sim_->diverged()) {
+    res.success = false;
+    res.status_message = "the state became non-finite: stopped at the last finite state, call "
+                         "~reset to go on";
+    return true;
+  }
   res.success = true;
   res.status_message = "stepped " + std::to_string(req.steps) + " x " +
                        std::to_string(sim_->options().time_step) + " s";

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "nonsmooth_sim/node/initial_conditions.h"
 
@@ -193,6 +194,23 @@ std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point dea
 
 void SimulationNode::StepOnce() {
   last_step_ = sim_->Step();
+  if (!last_step_.state_finite) {
+    ROS_ERROR_ONCE("nonsmooth_sim: the state became non-finite at t = %.6f s (dt*|omega| = %.3g, "
+                   "~gyroscopic %s): paused at the last finite state; call ~reset to go on",
+                   sim_->time() + sim_->options().time_step, last_step_.max_dt_omega,
+                   std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
+    Pause("state not finite");
+    return;
+  }
+  if (last_step_.explicit_gyroscopic_unsafe) {
+    const double dt = sim_->options().time_step;
+    ROS_WARN_ONCE("nonsmooth_sim: warning: explicit gyroscopic term outside its safe range "
+                  "dt*|omega| <= %g (reached %.2g at t = %.4g s): energy can grow by "
+                  "O((dt*|omega|)^2) per step and diverge; use ~gyroscopic implicit_midpoint or "
+                  "~time_step <= %.1e",
+                  kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, sim_->time(),
+                  kExplicitGyroscopicMaxDtOmega * dt / last_step_.max_dt_omega);
+  }
   period_.Add(last_step_);
   total_.Add(last_step_);
   PublishDue();

@@ -183,14 +183,24 @@ std::string UsageText() {
        "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4)\n"
        "  --inclination THETA   initial inclination [rad] in [0, pi] (default 0.1)\n"
        "  --spin OMEGA          initial spin about the symmetry axis [rad/s] (default 180)\n"
-       "  --gyroscopic SCHEME   explicit (the paper's, default) or implicit_midpoint\n"
+       "  --gyroscopic SCHEME   explicit (the paper's, default) or implicit_midpoint; explicit is\n"
+       "                        safe for dt*|omega| <= "
+    << kExplicitGyroscopicMaxDtOmega
+    << " (warned on stderr beyond)\n"
+       "  --no-gap-correction   the paper's scheme exactly: no lift of penetrating bodies (by\n"
+       "                        default a body whose closed contact sinks below -"
+    << kGapCorrectionSlop
+    << " m is\n"
+       "                        lifted back to it; the lifts are reported in the summary)\n"
        "  --csv FILE            time series: t, position, quaternion, theta, energy, Jellett,\n"
        "                        vertical spin, per contact closed/percussions, iterations\n"
        "  --summary FILE        JSON summary\n"
        "  --decimate N          write every N-th step to the CSV (default 10)\n"
        "  --quiet               no report on stdout, no progress bar\n"
        "  --help                this text\n"
-       "Exit status: 0 ok, 1 an output file could not be written, 2 invalid command line.\n";
+       "Exit status: 0 ok, 1 an output file could not be written, 2 invalid command line,\n"
+       "3 the state became non-finite (the run diverged; CSV and summary end at the last\n"
+       "finite state, summary field \"state_finite\": false).\n";
   return s.str();
 }
 
@@ -206,6 +216,10 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
       }
       if (arg == "--direct-drilling-sets") {
         config.options.solver.map_drilling_sets = false;
+        continue;
+      }
+      if (arg == "--no-gap-correction") {
+        config.options.gap_correction = false;
         continue;
       }
       std::string value;

@@ -21,6 +21,7 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitOutputError = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitNonFinite = 3;  // the run diverged; outputs end at the last finite state
 
 // CPU time of this thread [s]: unlike wall time, not inflated when other processes share the core.
 double ThreadCpuSeconds() {
@@ -61,11 +62,32 @@ void PrintReport(const RunSummary& s) {
               1e3 * s.z_final, s.vertical_spin_final);
   std::printf("  energy %.6g J -> %.6g J, largest step increase %.3g J\n", s.energy_initial,
               s.energy_final, s.max_energy_increase);
+  if (c.options.gap_correction) {
+    std::printf("  gap correction: %ld steps lifted, largest lift %.3g m, +%.3g J in total\n",
+                s.gap_correction_steps, s.gap_correction_max, s.gap_correction_energy);
+  } else {
+    std::printf("  gap correction off: smallest gap %.3g m\n", s.min_gap);
+  }
+  if (!s.state_finite) {
+    std::printf("  STOPPED: the state became non-finite at t = %s (values above: last finite "
+                "state)\n",
+                Optional(s.t_non_finite).c_str());
+  }
   std::printf("  solver: %.2f iterations per step (max %d), %ld steps unconverged\n",
               s.mean_iterations, s.max_iterations, s.unconverged_steps);
   std::printf("  wall %.4f s (cpu %.4f s) for %ld steps: %.0f steps/s, %.1fx real time\n",
               s.wall_time_s, s.cpu_time_s, s.steps, s.steps / s.wall_time_s,
               c.duration / s.wall_time_s);
+}
+
+// Once per run, at the first step with Δt·|ω| beyond the explicit scheme's safe range.
+void WarnExplicitGyroscopicUnsafe(double dt_omega, double t, double dt) {
+  std::fprintf(stderr,
+               "simulate: warning: explicit gyroscopic term outside its safe range dt*|omega| <= "
+               "%g (reached %.2g at t = %.4g s): energy can grow by O((dt*|omega|)^2) per step "
+               "and diverge; use --gyroscopic implicit_midpoint or --dt <= %.1e\n",
+               kExplicitGyroscopicMaxDtOmega, dt_omega, t,
+               kExplicitGyroscopicMaxDtOmega * dt / dt_omega);
 }
 
 int Run(const RunConfig& config) {
@@ -89,8 +111,28 @@ int Run(const RunConfig& config) {
   // the timed loop: steps and per-step monitors; CSV rows are only copied here
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
+  bool warned = false;
   for (long step = 1; step <= steps; ++step) {
     simulator.Step(&stats);
+    if (!stats.state_finite) {
+      monitor.ObserveNonFinite(step);
+      progress.Finish();
+      std::fprintf(stderr,
+                   "simulate: the state became non-finite at t = %.6g s (step %ld of %ld, "
+                   "dt*|omega| = %.3g, gyroscopic %s); stopped at the last finite state, the "
+                   "outputs end there (summary \"state_finite\": false)\n",
+                   static_cast<double>(step) * config.options.time_step, step, steps,
+                   stats.max_dt_omega,
+                   std::string(GyroscopicSchemeName(config.options.gyroscopic)).c_str());
+      break;
+    }
+    if (stats.explicit_gyroscopic_unsafe && !warned) {
+      warned = true;
+      progress.Finish();
+      WarnExplicitGyroscopicUnsafe(stats.max_dt_omega,
+                                   static_cast<double>(step) * config.options.time_step,
+                                   config.options.time_step);
+    }
     monitor.Observe(step, simulator, stats);
     if (record && (step % config.decimate == 0 || step == steps)) {
       csv.Record(static_cast<double>(step) * config.options.time_step, simulator, stats);
@@ -115,7 +157,7 @@ int Run(const RunConfig& config) {
     return kExitOutputError;
   }
   if (!config.quiet) PrintReport(summary);
-  return kExitOk;
+  return summary.state_finite ? kExitOk : kExitNonFinite;
 }
 
 }  // namespace

@@ -84,7 +84,22 @@ void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatis
   summary_.max_iterations = std::max(summary_.max_iterations, stats.solver.iterations);
   if (!stats.solver.converged) ++summary_.unconverged_steps;
   summary_.max_dt_omega = std::max(summary_.max_dt_omega, stats.max_dt_omega);
+  if (stats.explicit_gyroscopic_unsafe && summary_.explicit_gyroscopic_safe) {
+    summary_.explicit_gyroscopic_safe = false;
+    summary_.t_explicit_gyroscopic_unsafe = t;
+    summary_.explicit_gyroscopic_unsafe_dt_omega = stats.max_dt_omega;
+  }
+
+  // gap correction (a position projection outside the paper's scheme)
+  if (stats.gap_correction > 0.0) ++summary_.gap_correction_steps;
+  summary_.gap_correction_max = std::max(summary_.gap_correction_max, stats.gap_correction);
+  summary_.gap_correction_energy += stats.gap_correction_energy;
   summary_.steps = step;
+}
+
+void RunMonitor::ObserveNonFinite(long step) {
+  summary_.state_finite = false;
+  summary_.t_non_finite = static_cast<double>(step) * time_step_;
 }
 
 RunSummary RunMonitor::Finish(const Simulator& simulator) {

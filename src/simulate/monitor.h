@@ -44,6 +44,18 @@ struct RunSummary {
   double vertical_spin_final = 0.0;
   double min_gap = 0.0;  ///< smallest gap of any contact at the end of a step [m]
   double max_dt_omega = 0.0;
+  /// No step reported StepStatistics::explicit_gyroscopic_unsafe.
+  bool explicit_gyroscopic_safe = true;
+  /// First step with explicit_gyroscopic_unsafe: its time [s] and Δt·|ω|.
+  std::optional<double> t_explicit_gyroscopic_unsafe;
+  double explicit_gyroscopic_unsafe_dt_omega = 0.0;
+  double gap_correction_max = 0.0;     ///< largest lift of a body by gap_correction [m]
+  double gap_correction_energy = 0.0;  ///< potential energy all lifts added [J]
+  long gap_correction_steps = 0;       ///< steps with a lift
+  /// false: the run stopped at a step that met a non-finite value (diverged); the summary
+  /// describes the last finite state.
+  bool state_finite = true;
+  std::optional<double> t_non_finite;  ///< end time of the step that was not taken [s]
   double mean_iterations = 0.0;
   int max_iterations = 0;
   long unconverged_steps = 0;
@@ -53,7 +65,10 @@ struct RunSummary {
 class RunMonitor {
  public:
   RunMonitor(const RunConfig& config, const Simulator& simulator);
+  /// After every step taken (stats.state_finite).
   void Observe(long step, const Simulator& simulator, const StepStatistics& stats);
+  /// The step `step` met a non-finite value and was not taken.
+  void ObserveNonFinite(long step);
   RunSummary Finish(const Simulator& simulator);
 
  private:

@@ -103,6 +103,14 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("vertical_spin_final", s.vertical_spin_final);
   json.Add("min_gap", s.min_gap);
   json.Add("max_dt_omega", s.max_dt_omega);
+  json.Add("explicit_gyroscopic_safe", s.explicit_gyroscopic_safe);
+  json.Add("t_explicit_gyroscopic_unsafe", s.t_explicit_gyroscopic_unsafe);
+  json.Add("gap_correction", c.options.gap_correction);
+  json.Add("gap_correction_max", s.gap_correction_max);
+  json.Add("gap_correction_energy", s.gap_correction_energy);
+  json.Add("gap_correction_steps", s.gap_correction_steps);
+  json.Add("state_finite", s.state_finite);
+  json.Add("t_non_finite", s.t_non_finite);
 
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) return false;

@@ -7,12 +7,15 @@
 //    its force set (Λ_N ≥ 0, friction inside μΛ_N, converged or not), and a step reported as
 //    converged satisfies the normal law (γ_N ≥ 0 after the step, for ε = 0);
 //  - energy: with the implicit-midpoint gyroscopic term no step gains more than round-off plus
-//    the contact work Moreau's rule allows (kContactWorkPerStep), and E(t) ≤ E(0).
+//    the contact work Moreau's rule allows (kContactWorkPerStep), and E(t) ≤ E(0). These are
+//    properties of the paper's scheme (13)-(18): the energy checks are net of the potential energy
+//    the gap correction (SimulatorOptions::gap_correction, a position projection outside the
+//    scheme, on by default) adds and reports per step (StepStatistics::gap_correction_energy).
+//    GapCorrection.* below checks the projection itself.
 // Bad parameters are rejected with std::invalid_argument naming the parameter and its range
 // before anything runs. Measured values are written next to each bound (Release build).
-// Two tests fail on purpose until the defects they expose are fixed (issue 4 report):
-// LongRun.RockingTopStaysOnTheFloorForAnHour (penetration drift of rolling contacts) and
-// BadScaling.ModifiedIterationConvergesWhereJacobiStalls ((43) claims convergence while stalled).
+// BadScaling.ModifiedIterationConvergesWhereJacobiStalls fails on purpose until the defect it
+// exposes is fixed ((43) claims convergence while stalled; issue 4 report).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -46,6 +49,9 @@ constexpr double kEnergyRoundOff = 1e-15;
 // without sliding the Tippe-Top gains up to 1.8e-12 J in a step (1.5e-10 E0); sliding contacts
 // and ε = 1 show round-off only [J].
 constexpr double kContactWorkPerStep = 1e-11;
+// A lifted contact ends at -kGapCorrectionSlop up to the round-off of z_S + A K_r_SM - ρ with
+// lengths of O(1e-2 m) (~1e-18 m); 1e-12 m leaves room for the larger scenes [m].
+constexpr double kLiftRoundOff = 1e-12;
 
 // ---------------------------------------------------------------------------------------------
 // What a run observed, step by step.
@@ -58,8 +64,12 @@ struct RunReport {
   bool finite = true;
   double max_quaternion_error = 0.0;      // max ||p| - 1|
   double min_gap = kInf;                  // smallest gap of any sphere after a step [m]
-  double max_step_energy_gain = -kInf;    // max E(t+Δt) - E(t) [J]
-  double max_energy_above_start = -kInf;  // max E(t) - E(0) [J]
+  // energies net of the gap correction's lifts, i.e. of the paper's scheme
+  double max_step_energy_gain = -kInf;    // max E(t+Δt) - E(t) - ΔE_lift(t+Δt) [J]
+  double max_energy_above_start = -kInf;  // max E(t) - E(0) - Σ ΔE_lift [J]
+  double gap_correction_energy = 0.0;     // Σ ΔE_lift, the potential energy the lifts added [J]
+  double max_gap_correction = 0.0;        // largest lift of one step [m]
+  long gap_correction_steps = 0;          // steps with a lift
   double max_set_violation = 0.0;         // largest excess over its force set, / μΛ_N
   double theta_max = 0.0;                 // body 0 [rad]
   double min_normal_velocity = kInf;      // of converged closed contacts, ε = 0 [m/s]
@@ -123,8 +133,13 @@ RunReport RunChecked(Simulator* sim, long steps, double normal_tolerance = 1e-6,
           std::max(r.max_quaternion_error, std::abs(s.orientation.norm() - 1.0));
     }
     const double energy = sim->Energy();
-    r.max_step_energy_gain = std::max(r.max_step_energy_gain, energy - previous);
-    r.max_energy_above_start = std::max(r.max_energy_above_start, energy - e0);
+    r.gap_correction_energy += stats.gap_correction_energy;
+    r.max_gap_correction = std::max(r.max_gap_correction, stats.gap_correction);
+    if (stats.gap_correction > 0.0) ++r.gap_correction_steps;
+    r.max_step_energy_gain =
+        std::max(r.max_step_energy_gain, energy - previous - stats.gap_correction_energy);
+    r.max_energy_above_start =
+        std::max(r.max_energy_above_start, energy - e0 - r.gap_correction_energy);
     previous = energy;
     r.theta_max = std::max(r.theta_max, Inclination(sim->state()[0]));
 
@@ -518,11 +533,16 @@ TEST(NormalForceToZero, TouchingWithoutLoadCarriesNoForce) {
 TEST(NormalForceToZero, BigSphereLiftsOffCleanly) {
   // the Tippe-Top's inversion: once the peg touches down (θ ≈ 140°) the big sphere's load goes
   // to 0 and it lifts off. Through that phase every step converges, Λ_N ≥ 0 (in the set check)
-  // and energy is never gained; after lift-off (measured: peg down at 1.3690 s, big sphere last
-  // closed at 1.3712 s) its gap opens (2.8 mm at 1.7 s) and it does not touch again.
+  // and energy is never gained; after lift-off its gap opens (2.8 mm at 1.7 s) and it does not
+  // touch again. Without the gap correction the big sphere, sunk ~30 μm, stayed closed until
+  // after the peg touched (measured: peg down at 1.3690 s, big sphere last closed at 1.3712 s).
+  // With it the big sphere hops just before and comes down in the step the peg touches
+  // (measured: both at 1.3703 s, a double impact with Λ_N = 1.3e-4 N s on the peg, 28 times the
+  // resting load). There a converged step shows γ_N = -5.1e-6 m/s: the solver's increment test
+  // stops at an error of tolerance_rel·Λ_N·G/(1 - contraction), 10 times the usual 1e-6 m/s.
   Simulator sim(TippeTop({}), Options());
   double last_closed = -1.0, first_peg = -1.0;
-  const RunReport r = RunChecked(&sim, Steps(1.7, 1e-4), 1e-6, [&](long k, const StepStatistics&) {
+  const RunReport r = RunChecked(&sim, Steps(1.7, 1e-4), 1e-5, [&](long k, const StepStatistics&) {
     const auto& c = sim.contacts();
     if (c[kPeg].closed && first_peg < 0.0) first_peg = k * 1e-4;
     if (c[kBig].closed) last_closed = k * 1e-4;
@@ -531,7 +551,7 @@ TEST(NormalForceToZero, BigSphereLiftsOffCleanly) {
   EXPECT_EQ(r.unconverged_steps, 0);
   EXPECT_LT(r.max_step_energy_gain, kEnergyRoundOff);
   ASSERT_GT(first_peg, 0.0);
-  EXPECT_GT(last_closed, first_peg);
+  EXPECT_GE(last_closed, first_peg);
   EXPECT_LT(last_closed, 1.6);
   EXPECT_GT(sim.contacts()[kBig].gap, 1e-3);
 }
@@ -753,20 +773,190 @@ TEST(LongRun, RestingTopForAnHourAtOneMillisecond) {
 }
 
 TEST(LongRun, RockingTopStaysOnTheFloorForAnHour) {
-  // The same hour from θ0 = 0.1 rad: the top rocks on its big sphere (rolling, nothing
-  // dissipates). The contact point runs over the curved sphere; the velocity-level constraint
-  // γ_N ≥ 0 of (14) at q_M does not see the O(Δt²) curvature term of the gap, so every rolling
-  // step can sink the sphere a little (measured: gap -2.9e-3 m after 1 h, linear in time at
-  // 0.8 μm/s; -2.4e-7 m after 3 s at Δt = 1e-4). Penetration must stay bounded over long runs:
-  // this test fails until the step corrects position drift (see the report of issue 4).
+  // The same hour from θ0 = 0.1 rad: the top rocks on its big sphere (rolling, nothing dissipates).
+  // The contact point runs over the curved sphere; the velocity-level constraint γ_N ≥ 0 of (14) at
+  // q_M does not see the O(Δt²) curvature term of the gap, so every rolling step can sink the
+  // sphere a little: the paper's scheme alone ends the hour at gap -2.9e-3 m (linear in time at 0.8
+  // μm/s; -2.4e-7 m after 3 s at Δt = 1e-4). With the default gap correction the penetration stays
+  // at the slop (measured smallest gap -1.0e-6 m; from ~1.3 s on nearly every step lifts, 3598692
+  // of 3.6e6 steps, by at most 1.6e-9 m) and, net of the lifts, no energy is gained.
   TopSetup setup;
   setup.spin = 0.0;
   Simulator sim(TippeTop(setup), Options(1e-3));
+  ASSERT_TRUE(sim.options().gap_correction);
   const RunReport r = RunChecked(&sim, Steps(3600.0, 1e-3));
   EXPECT_TRUE(r.finite);
   EXPECT_LT(r.max_quaternion_error, 1e-14);
   EXPECT_LE(r.max_energy_above_start, 0.0);
   EXPECT_GT(r.min_gap, -1e-4);
+  EXPECT_GT(r.min_gap, -kGapCorrectionSlop - kLiftRoundOff);
+  EXPECT_GT(r.gap_correction_steps, 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gap correction (a position projection outside the paper's scheme) and divergence
+
+TEST(GapCorrection, RockingTopIsHeldAtTheSlopWhereThePapersSchemeSinks) {
+  // The rocking top of LongRun for 60 s at Δt = 1e-3. Control, gap_correction = false (the paper's
+  // scheme exactly): the rolling contact sinks steadily (measured smallest gap -4.76e-5 m), no lift
+  // reported. Default: the big sphere is held at -kGapCorrectionSlop (measured -1.0e-6 m); each
+  // lift is of the size of the per-step drift (measured largest 1.6e-9 m, on 58692 of 60000 steps),
+  // and the lifts add up to what the control sank beyond the slop (measured Σ Δz = 4.663e-5 m
+  // against 4.66e-5 m): Σ ΔE_lift / (m g) is the depth the projection removed.
+  TopSetup setup;
+  setup.spin = 0.0;
+  SimulatorOptions options = Options(1e-3);
+  options.gap_correction = false;
+  Simulator paper(TippeTop(setup), options);
+  const RunReport control = RunChecked(&paper, Steps(60.0, 1e-3));
+  EXPECT_TRUE(control.finite);
+  EXPECT_LT(control.min_gap, -10.0 * kGapCorrectionSlop);
+  EXPECT_EQ(control.gap_correction_steps, 0);
+  EXPECT_EQ(control.gap_correction_energy, 0.0);
+  EXPECT_LE(control.max_energy_above_start, 0.0);
+
+  Simulator corrected(TippeTop(setup), Options(1e-3));
+  const RunReport r = RunChecked(&corrected, Steps(60.0, 1e-3));
+  ExpectSane(r, -kGapCorrectionSlop - kLiftRoundOff, "gap correction");
+  EXPECT_LE(r.max_energy_above_start, 0.0);
+  EXPECT_GT(r.gap_correction_steps, 0);
+  EXPECT_GT(r.max_gap_correction, 0.0);
+  EXPECT_LT(r.max_gap_correction, 1e-8);
+  const RigidBody& body = corrected.scene().bodies[0];
+  const double lifted = r.gap_correction_energy / (body.mass * 9.81);
+  const double sunk = -control.min_gap - kGapCorrectionSlop;
+  EXPECT_NEAR(lifted, sunk, 0.1 * sunk);
+  // the rocking itself is the same motion: θ keeps its amplitude
+  EXPECT_NEAR(r.theta_max, control.theta_max, 1e-3);
+}
+
+TEST(GapCorrection, ImpactDepthIsLiftedAndReported) {
+  // A ball dropped from 1 m with ε = 0 stops in the impact step at its midpoint depth (measured
+  // 1.17e-4 m with gap_correction = false, where it stays). The default lifts it back to the
+  // slop in that step (measured 1.16e-4 m; afterwards only round-off-level lifts at rest) and
+  // reports the lifts and their potential energy m g Δz exactly.
+  for (const bool correct : {false, true}) {
+    Scene scene = BallScene(Eigen::Vector3d(0.0, 0.0, -9.81), FrictionSet::kSphere);
+    scene.initial_state[0].position.z() = 1.05;
+    SimulatorOptions options = Options(1e-4);
+    options.gap_correction = correct;
+    Simulator sim(scene, options);
+    double lift_total = 0.0, energy_total = 0.0, max_lift = 0.0;
+    const RunReport r =
+        RunChecked(&sim, Steps(0.6, 1e-4), 1e-6, [&](long, const StepStatistics& stats) {
+          lift_total += stats.gap_correction;
+          energy_total += stats.gap_correction_energy;
+          max_lift = std::max(max_lift, stats.gap_correction);
+        });
+    const std::string what = correct ? "corrected" : "paper";
+    EXPECT_TRUE(r.finite) << what;
+    // E0 = 2.06 J: its round-off is ~4e-16 J (measured 1.3e-15 J above E0 in free fall)
+    EXPECT_LE(r.max_energy_above_start, 1e-14) << what;
+    if (correct) {
+      EXPECT_GT(r.min_gap, -kGapCorrectionSlop - kLiftRoundOff) << what;
+      EXPECT_GT(max_lift, 1e-5) << what;
+      // one body: ΔE = m g Δz for every lift
+      EXPECT_NEAR(energy_total, 0.2 * 9.81 * lift_total, 1e-12 * energy_total) << what;
+      EXPECT_NEAR(sim.contacts()[0].gap, -kGapCorrectionSlop, kLiftRoundOff) << what;
+    } else {
+      EXPECT_LT(r.min_gap, -1e-5) << what;
+      EXPECT_EQ(lift_total, 0.0) << what;
+    }
+  }
+}
+
+// A free asymmetric brick (no contact, no dissipation) spinning about a skew axis.
+Scene SpinningBrick(double dt_omega, double dt) {
+  Scene scene;
+  RigidBody brick;
+  brick.name = "brick";
+  brick.mass = 0.5;
+  brick.inertia = Eigen::Vector3d(2e-3, 3e-3, 4e-3).asDiagonal();
+  scene.bodies = {brick};
+  BodyState state;
+  state.position = Eigen::Vector3d(0.0, 0.0, 1.0);
+  state.angular_velocity = Eigen::Vector3d(3.0, 2.0, 5.0).normalized() * (dt_omega / dt);
+  scene.initial_state = {state};
+  return scene;
+}
+
+TEST(Divergence, ExplicitBlowUpStopsAtTheLastFiniteStateWithoutThrowing) {
+  // The explicit gyroscopic term at Δt·|ω| = 0.4, four times kExplicitGyroscopicMaxDtOmega, on a
+  // free asymmetric brick: every step gains ½Δt²aᵀΘa, |ω| grows faster and faster and overflows
+  // (measured: the step ending at t = 0.134 s would be non-finite, from |ω| = 1.9e79 rad/s). That
+  // step is not taken: state_finite = false, no exception, the state is the last finite one (energy
+  // finite), the time stays, and later steps do not advance; SetState() restarts. Every step
+  // reports explicit_gyroscopic_unsafe. Control: the implicit midpoint rule runs 100 times as long
+  // and keeps ½ωᵀΘω (it conserves it exactly without torque).
+  const double dt = 1e-3;
+  const Scene scene = SpinningBrick(0.4, dt);
+  Simulator sim(scene, Options(dt, GyroscopicScheme::kExplicit));
+  StepStatistics stats;
+  long unsafe = 0, steps = 0;
+  bool stopped = false;
+  for (; steps < 10000; ++steps) {
+    const std::vector<BodyState> before = sim.state();
+    const double time_before = sim.time();
+    ASSERT_NO_THROW(sim.Step(&stats));
+    EXPECT_EQ(stats.explicit_gyroscopic_unsafe,
+              stats.max_dt_omega > kExplicitGyroscopicMaxDtOmega);
+    if (!stats.state_finite) {
+      stopped = true;
+      EXPECT_TRUE(sim.diverged());
+      EXPECT_EQ(sim.state()[0].position, before[0].position);
+      EXPECT_EQ(sim.state()[0].angular_velocity, before[0].angular_velocity);
+      EXPECT_EQ(sim.time(), time_before);
+      break;
+    }
+    if (stats.explicit_gyroscopic_unsafe) ++unsafe;
+    ASSERT_TRUE(StateIsFinite(sim.state()));
+    ASSERT_TRUE(std::isfinite(sim.Energy()));
+  }
+  ASSERT_TRUE(stopped) << "the explicit run at dt*|omega| = 0.4 did not diverge";
+  EXPECT_GT(steps, 10);
+  EXPECT_EQ(unsafe, steps);  // every step taken was outside the safe range
+  EXPECT_TRUE(std::isfinite(sim.Energy()));
+  const std::vector<BodyState> last = sim.state();
+  const double t_stop = sim.time();
+  for (int k = 0; k < 10; ++k) {
+    ASSERT_NO_THROW(sim.Step(&stats));
+    EXPECT_FALSE(stats.state_finite);
+    EXPECT_EQ(sim.time(), t_stop);
+    EXPECT_EQ(sim.state()[0].angular_velocity, last[0].angular_velocity);
+  }
+  sim.SetState(scene.initial_state);
+  EXPECT_FALSE(sim.diverged());
+  sim.Step(&stats);
+  EXPECT_TRUE(stats.state_finite);
+  EXPECT_GT(sim.time(), t_stop);
+
+  Simulator implicit(scene, Options(dt, GyroscopicScheme::kImplicitMidpoint));
+  const double e0 = implicit.Energy();
+  for (long k = 0; k < 100 * steps; ++k) {
+    implicit.Step(&stats);
+    ASSERT_TRUE(stats.state_finite);
+    ASSERT_FALSE(stats.explicit_gyroscopic_unsafe);
+  }
+  // free fall changes E only by round-off; the rotation keeps ½ωᵀΘω
+  EXPECT_NEAR(implicit.Energy(), e0, 1e-9 * std::abs(e0));
+}
+
+TEST(Divergence, TippeTopOutsideTheSafeRangeNeverThrows) {
+  // The Tippe-Top with the explicit term at Δt·|ω| = 0.4 and 0.5 (Δt = 1e-3): the run that made
+  // the solver throw on a non-finite G before; whatever it does now, Step() never throws and a
+  // run either stays finite or stops with state_finite = false at a finite state.
+  for (const double spin : {400.0, 500.0}) {
+    TopSetup setup;
+    setup.spin = spin;
+    Simulator sim(TippeTop(setup), Options(1e-3, GyroscopicScheme::kExplicit));
+    StepStatistics stats;
+    for (long k = 0; k < Steps(8.0, 1e-3); ++k) {
+      ASSERT_NO_THROW(sim.Step(&stats)) << spin;
+      ASSERT_TRUE(StateIsFinite(sim.state())) << spin;
+      if (!stats.state_finite) break;
+    }
+    EXPECT_EQ(sim.diverged(), !stats.state_finite) << spin;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -836,14 +1026,15 @@ TEST(Restitution, BouncingBallKeepsEnergyLosesThreeQuartersOrStops) {
 TEST(Restitution, TippeTopInvertsWithAnyRestitutionAndNeverGainsEnergy) {
   // ε applies to all components of a contact (14); for ε = 0.5 and 1 the top still inverts
   // (measured θ > 2.4 rad at 1.3163 s and 1.3165 s, against 1.3159 s for ε = 0), E(t) ≤ E(0)
-  // throughout, no step gains energy beyond round-off (measured 3.5e-18 J).
+  // throughout, no step gains energy beyond round-off (measured 3.5e-18 J). The double impact of
+  // the peg touchdown allows γ_N down to -1e-5 m/s on a converged step (BigSphereLiftsOffCleanly).
   for (const double restitution : {0.0, 0.5, 1.0}) {
     TopSetup setup;
     setup.restitution = restitution;
     Simulator sim(TippeTop(setup), Options());
     double touchdown = -1.0;
     const RunReport r =
-        RunChecked(&sim, Steps(2.0, 1e-4), 1e-6, [&](long k, const StepStatistics&) {
+        RunChecked(&sim, Steps(2.0, 1e-4), 1e-5, [&](long k, const StepStatistics&) {
           if (touchdown < 0.0 && Inclination(sim.state()[0]) > 2.4) touchdown = k * 1e-4;
         });
     const std::string what = "eps = " + std::to_string(restitution);

@@ -2,6 +2,8 @@
 // Coulomb-Contensou laws, energy never exceeds its start, Jellett's integral is kept without
 // drilling torque, drilling friction drains the spin at the rate the force law bounds, the
 // transformed ellipsoid gives the trajectory of the direct one, and a resting top does not sink.
+// Energy statements are about the paper's scheme (13)-(18): they are taken net of the potential
+// energy the default gap correction (a position projection outside it) adds and reports.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,7 +51,9 @@ struct Inversion {
   std::optional<double> t_above_2_9;  // first θ > 2.9 rad (inverted)
   // max |z_S - 21 mm| from 0.1 s after θ first exceeds 2.9 rad to the end of the window [m]
   double worst_peg_height_error = 0.0;
-  bool peg_only_after_inversion = true;
+  bool big_sphere_open_after_inversion = true;
+  long peg_open_steps = 0;       // steps after inversion with the peg contact open
+  bool peg_open_twice = false;   // two consecutive such steps
   double max_energy_above_start = 0.0;  // max_t E(t) - E(0) [J]
 };
 
@@ -62,11 +66,14 @@ Inversion RunInversion(FrictionSet set, double limit, double peg_window) {
   Inversion result;
   result.max_energy_above_start = -INFINITY;
   const long steps = std::lround(limit / 1e-4);
+  double lifted = 0.0;  // Σ potential energy of the gap correction's lifts [J]
+  bool peg_was_open = false;
   for (long k = 1; k <= steps; ++k) {
-    sim.Step();
+    lifted += sim.Step().gap_correction_energy;
     const double t = k * 1e-4;
     const double theta = Inclination(sim.state()[0]);
-    result.max_energy_above_start = std::max(result.max_energy_above_start, sim.Energy() - e0);
+    result.max_energy_above_start =
+        std::max(result.max_energy_above_start, sim.Energy() - e0 - lifted);
     if (!result.t_above_2_4 && theta > 2.4) result.t_above_2_4 = t;
     if (result.t_above_2_4 && !result.t_above_2_9 && theta > 2.9) result.t_above_2_9 = t;
     if (result.t_above_2_9 && t > *result.t_above_2_9 + kSettle) {
@@ -76,8 +83,13 @@ Inversion RunInversion(FrictionSet set, double limit, double peg_window) {
     }
     if (result.t_above_2_9) {
       const auto& c = sim.contacts();
-      result.peg_only_after_inversion =
-          result.peg_only_after_inversion && c[kPeg].closed && !c[kBig].closed;
+      result.big_sphere_open_after_inversion =
+          result.big_sphere_open_after_inversion && !c[kBig].closed;
+      if (!c[kPeg].closed) {
+        result.peg_open_twice = result.peg_open_twice || peg_was_open;
+        ++result.peg_open_steps;
+      }
+      peg_was_open = !c[kPeg].closed;
       if (t > *result.t_above_2_9 + peg_window) break;
     }
   }
@@ -88,14 +100,19 @@ class CoupledLaw : public ::testing::TestWithParam<FrictionSet> {};
 
 TEST_P(CoupledLaw, TippeTopInvertsAndSpinsOnItsPeg) {
   // measured: θ > 2.4 rad at 1.3147 s (ellipsoid, sphere) and 1.3179 s (exact), θ > 2.9 rad at
-  // 1.4574 / 1.4576 s; |z_S - 21 mm| ≤ 0.41 / 0.31 mm on the peg (nutation, and ~0.06 mm of the
-  // scheme's penetration drift); max E(t) - E(0) = -4.8e-7 J
+  // 1.4585 / 1.4586 s; |z_S - 21 mm| ≤ 0.30 / 0.21 mm on the peg (nutation); max E(t) - E(0) net of
+  // the gap correction's lifts -4.8e-7 J. After the inversion the big sphere never touches and the
+  // top runs on its peg; while it settles there it hops off for single steps (measured 2, 2, 5 open
+  // steps, all within 30 ms of θ > 2.9, never two in a row). Without the gap correction the peg
+  // sank ~0.06 mm into the floor, deep enough to hide those micro-hops.
   const Inversion run = RunInversion(GetParam(), 3.5, 0.3);
   ASSERT_TRUE(run.t_above_2_4.has_value()) << "never passed 2.4 rad";
   EXPECT_LT(*run.t_above_2_4, 3.0);
   ASSERT_TRUE(run.t_above_2_9.has_value()) << "never exceeded 2.9 rad";
   EXPECT_LT(run.worst_peg_height_error, 0.5e-3);
-  EXPECT_TRUE(run.peg_only_after_inversion);
+  EXPECT_TRUE(run.big_sphere_open_after_inversion);
+  EXPECT_FALSE(run.peg_open_twice);
+  EXPECT_LE(run.peg_open_steps, 10);
   EXPECT_LE(run.max_energy_above_start, 0.0);
 }
 
@@ -111,12 +128,13 @@ TEST(TippeTop, FullRunNeverGainsEnergyAndFallsBackOffItsPeg) {
   Simulator sim(TippeTop(FrictionSet::kSphere), SimulatorOptions{});
   const double e0 = sim.Energy();
   double max_above = -INFINITY;
+  double lifted = 0.0;  // Σ potential energy of the gap correction's lifts [J]
   std::optional<double> inverted, fell_back, spin_on_peg_start;
   double spin_on_peg_end = 0.0;
   for (long k = 1; k <= 80000; ++k) {
-    sim.Step();
+    lifted += sim.Step().gap_correction_energy;
     const double t = k * 1e-4;
-    max_above = std::max(max_above, sim.Energy() - e0);
+    max_above = std::max(max_above, sim.Energy() - e0 - lifted);
     const bool peg_only = sim.contacts()[kPeg].closed && !sim.contacts()[kBig].closed;
     if (!inverted && Inclination(sim.state()[0]) > 2.9) inverted = t;
     if (inverted && !fell_back) {
@@ -135,7 +153,8 @@ TEST(TippeTop, FullRunNeverGainsEnergyAndFallsBackOffItsPeg) {
   EXPECT_LT(spin_on_peg_end, *spin_on_peg_start - 5.0);
 }
 
-// Largest E(t + Δt) - E(t) over the first `duration` seconds.
+// Largest E(t + Δt) - E(t) over the first `duration` seconds, net of the step's gap-correction
+// lift: the gain of the paper's scheme.
 double LargestEnergyIncrease(GyroscopicScheme scheme, double dt, double duration) {
   SimulatorOptions options;
   options.time_step = dt;
@@ -145,8 +164,8 @@ double LargestEnergyIncrease(GyroscopicScheme scheme, double dt, double duration
   double largest = -INFINITY;
   const long steps = std::lround(duration / dt);
   for (long k = 0; k < steps; ++k) {
-    sim.Step();
-    largest = std::max(largest, sim.Energy() - previous);
+    const double lifted = sim.Step().gap_correction_energy;
+    largest = std::max(largest, sim.Energy() - previous - lifted);
     previous = sim.Energy();
   }
   return largest;

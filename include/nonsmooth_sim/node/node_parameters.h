@@ -21,7 +21,8 @@ struct NodeParameters {
   std::string world_frame = "world";  ///< ~world_frame: fixed frame of TF, markers, contacts
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
-                                  ///< ~max_iterations, ~relaxation, ~gyroscopic
+                                  ///< ~max_iterations, ~relaxation, ~gyroscopic,
+                                  ///< ~gap_correction (bool, default true)
   std::string initial_body;       ///< ~initial/body: the body the initial conditions move
   InitialConditions initial;      ///< ~initial/{inclination,spin,position,orientation,
                                   ///< linear_velocity,angular_velocity}
