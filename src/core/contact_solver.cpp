@@ -58,21 +58,26 @@ struct ContactUpdate {
   Eigen::Vector4d next;  // Λ̂_i^{ν+1}, zero where the contact has no component
   bool normal_projected;
   bool friction_projected;
+  bool friction_natural_step;  // (46) accepted y: every friction component stepped α/Ĝ_kk
 };
 
 // Friction block of one contact: z = Λ̂_F^ν - r ξ̂_F, then (43) or (46). `Vector` is the block's
 // fixed-size vector type and `prox` its Euclidean projection for the radius μΛ_N^{ν+1}.
 template <bool kModified, typename Vector, typename Prox>
 Vector UpdateFriction(const Vector& lambda, const Vector& xi, const Vector& step, double r,
-                      const Prox& prox, bool* projected) {
+                      const Prox& prox, bool* projected, bool* natural_step) {
   const Vector z = lambda - r * xi;
   const auto p = prox(z);
   *projected = p.region != ProxRegion::kInterior;
+  *natural_step = false;
   if (kModified && !*projected) {
     // (46), non-projecting case (44): Q = diag(α / (r̂ Ĝ_kk)), i.e. Λ̂_k - (α / Ĝ_kk) ξ̂_k,
     // accepted only if it stays in the set; otherwise Q = I, which here is the step z of (43)
     const Vector jacobi = lambda - step.cwiseProduct(xi);
-    if (prox(jacobi).region == ProxRegion::kInterior) return jacobi;
+    if (prox(jacobi).region == ProxRegion::kInterior) {
+      *natural_step = true;
+      return jacobi;
+    }
   }
   // (37), (43); (46) with Q = I
   return p.point;
@@ -82,7 +87,7 @@ Vector UpdateFriction(const Vector& lambda, const Vector& xi, const Vector& step
 template <bool kModified>
 ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
                             const Eigen::Vector4d& xi) {
-  ContactUpdate update{Eigen::Vector4d::Zero(), false, false};
+  ContactUpdate update{Eigen::Vector4d::Zero(), false, false, false};
   // normal block {Λ_N ≥ 0}: (43) with r̂_i; (46) on the 1-D block has r̂ = α/Ĝ_NN and Q = 1
   const double r_normal = kModified ? w.r_normal : w.r_contact;
   const Prox1 normal = ProxNonNegative(lambda[0] - r_normal * xi[0]);
@@ -98,7 +103,7 @@ ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
     const auto disk = [radius](const Eigen::Vector2d& z) { return ProxDisk(z, radius); };
     update.next.segment<2>(1) = UpdateFriction<kModified, Eigen::Vector2d>(
         lambda.segment<2>(1), xi.segment<2>(1), w.step.segment<2>(1), r, disk,
-        &update.friction_projected);
+        &update.friction_projected, &update.friction_natural_step);
     return update;
   }
   // (T1, T2, τ) on the law's set in the iterated coordinates (Λ̂ = A⁻¹Λ or Λ)
@@ -106,18 +111,59 @@ ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
     return ProxFriction(w.set, z, radius, w.set_rbar);
   };
   update.next.tail<3>() = UpdateFriction<kModified, Eigen::Vector3d>(
-      lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected);
+      lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected,
+      &update.friction_natural_step);
   return update;
 }
 
-// max over components of |ΔΛ_k| / (tolerance_abs + tolerance_rel |Λ_k|), 0/0 = 0, x/0 = +inf
-double ResidualTerm(const Eigen::Vector4d& change, const Eigen::Vector4d& lambda,
+// Cap on s_k of a projecting friction block: the a-posteriori estimate q/(1 - q) of a linearly
+// converging iteration, q = max_{k∈F}|ΔΛ̂_k^ν| / max_{k∈F}|ΔΛ̂_k^{ν-1}| (contact_solver.h);
+// +inf (no cap) unless the block's change shrank
+double ProjectedChangeCap(const Eigen::Vector4d& change, const Eigen::Vector4d& previous_change) {
+  const double now = change.tail<3>().maxCoeff();
+  const double before = previous_change.tail<3>().maxCoeff();
+  if (!(now < before)) return std::numeric_limits<double>::infinity();
+  return std::max(1.0, now / (before - now));
+}
+
+// s_k of the stopping rule (contact_solver.h) for the step contact `w` took in its last update;
+// `change` and `previous_change` are |ΔΛ̂| of that update and of the one before (σ_k, capped by
+// q/(1 - q) on a projecting friction block)
+template <bool kModified>
+Eigen::Array4d ChangeScale(const ContactWork& w, const Eigen::Vector4d& change,
+                           const Eigen::Vector4d& previous_change) {
+  // (46): the accepted y stepped every component naturally, as the normal block always does
+  if (kModified && w.friction_natural_step) return Eigen::Array4d::Ones();
+  Eigen::Array4d scale =
+      kModified ? w.change_scale_friction.array() : w.change_scale_contact.array();
+  if (w.friction_projected) {
+    scale.tail<3>() = scale.tail<3>().min(ProjectedChangeCap(change, previous_change));
+  }
+  return scale;
+}
+
+// The distance measure of the stopping rule in Λ̂ for contact `w` at `lambda` = Λ̂^{ν+1}:
+// max(|ΔΛ̂_k|, min(s_k|ΔΛ̂_k|, 2e_k)) with e_k the half-width of the friction set of radius
+// ρ = μΛ_N^{ν+1} along k (ρ for T1, T2; R̄ρ/a_τ for τ, i.e. set_rbar·ρ), no bound for the normal
+template <bool kModified>
+Eigen::Array4d ScaledChange(const ContactWork& w, const Eigen::Vector4d& lambda,
+                            const Eigen::Vector4d& change, const Eigen::Vector4d& previous_change) {
+  const Eigen::Array4d scaled = ChangeScale<kModified>(w, change, previous_change) * change.array();
+  const double rho = w.mu * lambda[0];
+  const Eigen::Array4d width(std::numeric_limits<double>::infinity(), 2 * rho, 2 * rho,
+                             2 * w.set_rbar * rho);
+  return scaled.min(width).max(change.array());
+}
+
+// max over components of d_k / (tolerance_abs + tolerance_rel |Λ_k|), 0/0 = 0, x/0 = +inf, with
+// `distance` = d_k of the stopping rule
+double ResidualTerm(const Eigen::Vector4d& distance, const Eigen::Vector4d& lambda,
                     const SolverOptions& options) {
   double residual = 0.0;
   for (int k = 0; k < 4; ++k) {
     const double bound = options.tolerance_abs + options.tolerance_rel * std::abs(lambda[k]);
-    if (change[k] == 0.0) continue;
-    residual = std::max(residual, bound > 0.0 ? change[k] / bound
+    if (distance[k] == 0.0) continue;
+    residual = std::max(residual, bound > 0.0 ? distance[k] / bound
                                               : std::numeric_limits<double>::infinity());
   }
   return residual;
@@ -251,6 +297,7 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
   lambda_hat_.resize(m);
   lambda_next_.resize(m);
   change_.resize(m);
+  previous_change_.resize(m);
 
   for (std::size_t i = 0; i < m; ++i) {
     const ContactLaw& law = problem.contacts[i].law;
@@ -267,6 +314,7 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     w.set_rbar = law.rbar / w.scale[3];
     w.normal_projected = false;
     w.friction_projected = false;
+    w.friction_natural_step = false;
     // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), padded with zeros (scalar loops: dim ≤ 4)
     c_hat_[i].setZero();
     lambda_hat_[i].setZero();
@@ -275,6 +323,7 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
       lambda_hat_[i][k] = lambda[w.offset + k] / w.scale[k];
     }
     change_[i].setZero();
+    previous_change_[i].setZero();
   }
   for (std::size_t i = 0; i < m; ++i) {
     const ContactWork& wi = work_[i];
@@ -289,6 +338,7 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     }
   }
   const double alpha = options.relaxation;
+  const double inverse_alpha = 1.0 / alpha;
   for (std::size_t i = 0; i < m; ++i) {
     ContactWork& w = work_[i];
     const Eigen::Vector4d diagonal = g_hat_[i * m + i].diagonal();
@@ -306,6 +356,17 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     // (46) per block: normal {Λ_N ≥ 0} and friction F, each with its own r̂
     w.r_normal = alpha / diagonal[0];
     w.r_friction = w.dim > 1 ? alpha / max_friction : 0.0;
+    // stopping rule: σ_k = (α/Ĝ_iikk) / r̂_k for the steps r̂_i (43) and r̂_F (46, Q = I); 1 for
+    // the normal block of (46) (it steps α/Ĝ_iiNN) and where the contact has no component k
+    // (σ_k = max_l Ĝ_iill / Ĝ_iikk: products with 1/α instead of divisions, Solve is per step)
+    w.change_scale_contact.setOnes();
+    w.change_scale_friction.setOnes();
+    const double contact_factor = std::max(diagonal[0], max_friction) * inverse_alpha;
+    const double friction_factor = max_friction * inverse_alpha;
+    for (int k = 0; k < w.dim; ++k) {
+      w.change_scale_contact[k] = w.step[k] * contact_factor;
+      if (k > 0) w.change_scale_friction[k] = w.step[k] * friction_factor;
+    }
   }
 }
 
@@ -320,9 +381,11 @@ void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* stat
   ContactWork* const work = work_.data();
   const Eigen::Matrix4d* const g_hat = g_hat_.data();
   const Eigen::Vector4d* const c_hat = c_hat_.data();
-  Eigen::Vector4d* const last_change = change_.data();
   Eigen::Vector4d* current = lambda_hat_.data();
   Eigen::Vector4d* next = lambda_next_.data();
+  // |Λ̂^{ν+1} - Λ̂^ν| and |Λ̂^ν - Λ̂^{ν-1}|, swapped like the iterates
+  Eigen::Vector4d* change = change_.data();
+  Eigen::Vector4d* previous_change = previous_change_.data();
 
   bool converged = false;
   bool finite = true;
@@ -342,13 +405,21 @@ void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* stat
       next[i] = update.next;
       w.normal_projected = update.normal_projected;
       w.friction_projected = update.friction_projected;
-      // stopping rule, evaluated in Λ̂: a_k|ΔΛ̂_k| ≤ tol_abs + tol_rel a_k|Λ̂_k| with a = diag(A_i)
+      w.friction_natural_step = update.friction_natural_step;
+      // stopping rule, evaluated in Λ̂: a_k d̂_k ≤ tol_abs + tol_rel a_k|Λ̂_k| with a = diag(A_i)
+      // and d̂_k = max(|ΔΛ̂_k|, min(s_k|ΔΛ̂_k|, 2ê_k)) ≥ |ΔΛ̂_k|: the plain increment test is
+      // necessary, and s_k is only formed once that passes
       const Eigen::Array4d delta = (update.next - current[i]).array().abs();
-      converged = converged && (delta <= tolerance_rel * update.next.array().abs() +
-                                             w.tolerance_abs_hat.array())
-                                   .all();
-      last_change[i] = delta.matrix();
+      change[i] = delta.matrix();
+      if (converged) {
+        const Eigen::Array4d bound =
+            tolerance_rel * update.next.array().abs() + w.tolerance_abs_hat.array();
+        converged =
+            (delta <= bound).all() &&
+            (ScaledChange<kModified>(w, update.next, change[i], previous_change[i]) <= bound).all();
+      }
     }
+    std::swap(change, previous_change);
     // keep the last finite iterate if the iteration diverged (NaN fails the test above)
     if (!converged) {
       for (std::size_t i = 0; i < m; ++i) finite = finite && next[i].allFinite();
@@ -367,11 +438,14 @@ void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* stat
   double residual = 0.0;
   double max_change = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
+    const ContactWork& w = work_[i];
     // back to the original coordinates Λ = AΛ̂ (47)
-    const Eigen::Vector4d lambda = work_[i].scale.cwiseProduct(lambda_hat_[i]);
-    const Eigen::Vector4d change = work_[i].scale.cwiseProduct(change_[i]);
-    residual = std::max(residual, ResidualTerm(change, lambda, options));
-    max_change = std::max(max_change, change.maxCoeff());
+    const Eigen::Vector4d lambda = w.scale.cwiseProduct(lambda_hat_[i]);
+    // the last iteration's change is in `previous_change` after the swap
+    const Eigen::Vector4d distance = w.scale.cwiseProduct(
+        ScaledChange<kModified>(w, lambda_hat_[i], previous_change[i], change[i]).matrix());
+    residual = std::max(residual, ResidualTerm(distance, lambda, options));
+    max_change = std::max(max_change, w.scale.cwiseProduct(previous_change[i]).maxCoeff());
   }
   statistics->residual = residual;
   statistics->max_change = max_change;

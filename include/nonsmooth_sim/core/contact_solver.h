@@ -73,15 +73,48 @@
 // slide (bench/fixpoint_bench.cpp's rolling two-contact problem does not converge with α = 1);
 // Gauss-Seidel does not.
 //
-// Stopping rule (per iteration ν, over all components k of all contacts, in the original
+// Stopping rule (per iteration ν, over all components k of all contacts i, in the original
 // coordinates Λ = AΛ̂):
-//   converged  ⇔  |Λ_k^{ν+1} - Λ_k^ν| ≤ tolerance_abs + tolerance_rel · |Λ_k^{ν+1}|  for all k.
-// The reported residual is max_k |Λ_k^{ν+1} - Λ_k^ν| / (tolerance_abs + tolerance_rel·|Λ_k^{ν+1}|)
-// of the last iteration (≤ 1 means converged; a term with a zero bound counts 0 if its change is 0
-// and +inf otherwise). Non-convergence is data: the solver returns after max_iterations with
-// converged = false and never throws for it. If an iterate stops being finite (a divergent
-// Jacobi iteration, e.g. α too large for strongly coupled contacts), the solver stops and returns
-// the last finite iterate with converged = false and residual = max_change = +inf.
+//   converged  ⇔  d_k ≤ tolerance_abs + tolerance_rel · |Λ_k^{ν+1}|  for all k,
+//   d_k = max(|ΔΛ_k|, min(s_k|ΔΛ_k|, 2e_k)),  ΔΛ_k = Λ_k^{ν+1} - Λ_k^ν,
+// e_k the half-width of contact i's friction set along k at the radius ρ = μΛ_N^{ν+1} (ρ for T1,
+// T2; R̄ρ for τ; +inf for N), and s_k ≥ 1 the ratio of the step α/Ĝ_iikk natural to component k
+// to the step r̂_k it took, σ_k = (α/Ĝ_iikk) / r̂_k:
+//     kJacobi (43), every k:                       r̂_k = r̂_i      σ_k = max_l Ĝ_iill / Ĝ_iikk
+//     kModifiedJacobi (46), kGaussSeidel:
+//       normal block:                              α/Ĝ_iiNN         σ_N = 1
+//       friction block, y accepted:                α/Ĝ_iikk         σ_k = 1
+//       friction block, z (projecting, or y
+//         outside the set):                        r̂_F             σ_k = max_{l∈F} Ĝ_iill / Ĝ_iikk
+//   s_k = σ_k, except on a friction block whose prox acted in iteration ν (friction_projected):
+//   s_k = min(σ_k, max(1, q/(1 - q))) for k ∈ F if q < 1, with the block's contraction estimate
+//   q = max_{l∈F}|ΔΛ̂_l^ν| / max_{l∈F}|ΔΛ̂_l^{ν-1}| (ΔΛ̂^ν = Λ̂^{ν+1} - Λ̂^ν; ΔΛ̂^0 = 0: no cap in
+//   the first iteration).
+// (l over the components of contact i; s_k = 1 where a contact has no component k.) d_k estimates
+// the distance to the solution rather than the step actually taken, and is never below |ΔΛ_k|
+// (the plain increment test is necessary). Where the prox does not act, σ_k|ΔΛ̂_k| =
+// (α/Ĝ_iikk)|ξ̂_k|, for a contact with a diagonal Ĝ_ii and no coupling α times the distance
+// |Λ̂_k^ν - Λ̂_k*| of the old iterate from the solution (the new one's is |1 - α| times that).
+// Without it the test is fooled by (43) on a badly scaled contact: r̂_i = α/max_l Ĝ_iill makes the
+// steps of the components with a small Ĝ_iikk tiny, and |ΔΛ_k| passed the tolerance while Λ_N was
+// still far from its solution (stability_test.cpp, BadScaling). Where the prox acts, the set's
+// curvature (≈ |ξ̂_F|/ρ along a curved boundary) adds to Ĝ_iikk and the error contracts much
+// faster than σ_k assumes (Tippe-Top, mapped sets: σ_τ ≈ 3000, while the sliding iterate
+// converges in 3 iterations); there the a-posteriori bound of a linearly converging iteration,
+// |Λ^{ν+1} - Λ*| ≤ q/(1 - q)|ΔΛ^ν|, is used when it is smaller (a flat boundary, e.g. the side of
+// C_F, keeps q ≈ 1 - r̂_F Ĝ_iikk, which gives back σ_k). 2e_k bounds the distance of two points of
+// the friction set (Λ^{ν+1} and, up to the change of Λ_N, Λ*): it matters where σ_k is
+// astronomical, e.g. σ_τ = Ĝ_TT/(R̄²G_ττ) ≈ 1e15 for the Tippe-Top with R = 1e-9 m, where
+// 2R̄ρ ≈ 2e-15 N m s is below tolerance_abs. The rule is the plain increment test wherever (46)
+// and Gauss-Seidel step naturally (normal block, sticking friction block). s_k also scales
+// rounding errors: a tolerance_rel below about max_k s_k · 1e-15 may not be attainable.
+// The reported residual is max_k d_k / (tolerance_abs + tolerance_rel·|Λ_k^{ν+1}|) of the last
+// iteration (≤ 1 means converged; a term with a zero bound counts 0 if d_k = 0 and +inf
+// otherwise); max_change is max_k |ΔΛ_k|, without s_k. Non-convergence is data: the solver
+// returns after max_iterations with converged = false and never throws for it. If an iterate
+// stops being finite (a divergent Jacobi iteration, e.g. α too large for strongly coupled
+// contacts), the solver stops and returns the last finite iterate with converged = false and
+// residual = max_change = +inf.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 #define NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 
@@ -156,8 +189,9 @@ void ValidateContactProblem(const ContactProblem& problem);
 
 struct SolverStatistics {
   int iterations = 0;
-  double residual = 0.0;  ///< see the stopping rule above; ≤ 1 when converged
-  /// max_k |Λ_k^{ν+1} - Λ_k^ν| of the last iteration [N s or N m s]; +inf only if it diverged.
+  double residual = 0.0;  ///< max_k d_k / bound_k, see the stopping rule above; ≤ 1 when converged
+  /// max_k |Λ_k^{ν+1} - Λ_k^ν| of the last iteration, not d_k [N s or N m s]; +inf only if it
+  /// diverged.
   double max_change = 0.0;
   bool converged = false;
   /// Per contact: whether the last iteration projected its friction components (sliding) and its
@@ -173,6 +207,10 @@ struct ContactWork {
   Eigen::Vector4d scale = Eigen::Vector4d::Ones();  ///< diagonal of A_i (N, T1, T2, τ), see above
   Eigen::Vector4d step = Eigen::Vector4d::Zero();   ///< α / Ĝ_iikk (46); 0 where absent
   Eigen::Vector4d tolerance_abs_hat = Eigen::Vector4d::Zero();  ///< tolerance_abs / diag(A_i)
+  /// σ_k of the stopping rule for the steps r̂_i of (43): (α/Ĝ_iikk) / r̂_i; 1 where absent
+  Eigen::Vector4d change_scale_contact = Eigen::Vector4d::Ones();
+  /// σ_k for (46) when the friction block stepped r̂_F (Q = I): (1, (α/Ĝ_iikk) / r̂_F for k ∈ F)
+  Eigen::Vector4d change_scale_friction = Eigen::Vector4d::Ones();
   double r_contact = 0.0;   ///< r̂_i of (43): α / max_k Ĝ_iikk over the whole contact
   double r_normal = 0.0;    ///< α / Ĝ_iiNN: (46) on the normal block
   double r_friction = 0.0;  ///< α / max_{k∈F} Ĝ_iikk: (46) on the friction block
@@ -185,6 +223,8 @@ struct ContactWork {
   FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
   bool normal_projected = false;
   bool friction_projected = false;
+  /// (46): the last iteration accepted the friction block's per-component step y (s_k = 1)
+  bool friction_natural_step = false;
 };
 }  // namespace internal
 
@@ -209,11 +249,11 @@ class ContactSolver {
                const Eigen::VectorXd& lambda);
 
   // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
-  // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last change |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact
+  // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last two changes |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact
   // (std::vector suffices for the fixed-size Eigen types: C++17 honours their alignment)
   std::vector<internal::ContactWork> work_;
   std::vector<Eigen::Matrix4d> g_hat_;
-  std::vector<Eigen::Vector4d> c_hat_, lambda_hat_, lambda_next_, change_;
+  std::vector<Eigen::Vector4d> c_hat_, lambda_hat_, lambda_next_, change_, previous_change_;
 };
 
 }  // namespace nonsmooth_sim
