@@ -25,6 +25,15 @@ Prox2 ProxDisk(const Eigen::Vector2d& x, double radius) {
   return {x * (radius / std::sqrt(norm_sq)), ProxRegion::kBoundary};
 }
 
+Prox3 ProxFlatDisk(const Eigen::Vector3d& x, double radius) {
+  const Prox2 disk = ProxDisk(x.head<2>(), radius);
+  // interior only if x already lies in the plane Λ_τ = 0
+  const bool inside = disk.region == ProxRegion::kInterior && x.z() == 0.0;
+  return {Eigen::Vector3d(disk.point.x(), disk.point.y(), 0.0),
+          inside ? ProxRegion::kInterior : disk.region == ProxRegion::kApex ? ProxRegion::kApex
+                                                                             : ProxRegion::kBoundary};
+}
+
 Prox3 ProxBall(const Eigen::Vector3d& x, double radius) {
   // apex: the ball has shrunk to the point 0
   if (!(radius > 0.0)) return {Eigen::Vector3d::Zero(), ProxRegion::kApex};

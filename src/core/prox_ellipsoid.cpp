@@ -96,12 +96,7 @@ Prox3 ProxEllipsoid(const Eigen::Vector3d& x, double radius, double rbar) {
   const Eigen::Vector2d x_t = x.head<2>();
   const double rho = x_t.norm();
   // flat limit R̄ = 0: the disk ||Λ_T|| ≤ radius in the plane Λ_τ = 0
-  if (!(rbar > 0.0)) {
-    const Prox2 disk = ProxDisk(x_t, radius);
-    const bool inside = disk.region == ProxRegion::kInterior && x.z() == 0.0;
-    return {Eigen::Vector3d(disk.point.x(), disk.point.y(), 0.0),
-            inside ? ProxRegion::kInterior : ProxRegion::kBoundary};
-  }
+  if (!(rbar > 0.0)) return ProxFlatDisk(x, radius);
   const double inv_radius = 1.0 / radius;
   const double X = rho * inv_radius;
   const double Z = std::abs(x.z()) * inv_radius;

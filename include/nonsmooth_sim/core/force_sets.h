@@ -75,6 +75,9 @@ Prox1 ProxNonNegative(double x);
 /// Planar Coulomb disk {||Λ_T|| ≤ radius}, radius = μΛ_N ≥ 0.
 Prox2 ProxDisk(const Eigen::Vector2d& x, double radius);
 
+/// The flat limit R̄ = 0 of the 3-D friction sets: the disk ||Λ_T|| ≤ radius in the plane Λ_τ = 0.
+Prox3 ProxFlatDisk(const Eigen::Vector3d& x, double radius);
+
 /// Ball S_F (58): ||Λ_T||² + Λ_τ² ≤ radius², closed form (59).
 Prox3 ProxBall(const Eigen::Vector3d& x, double radius);
 
