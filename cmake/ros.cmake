@@ -52,6 +52,16 @@ add_executable(nonsmooth_sim_node src/node/main.cpp)
 target_link_libraries(nonsmooth_sim_node PRIVATE nonsmooth_sim_ros)
 set_target_properties(nonsmooth_sim_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
 
+# The counting subscriber of scripts/node-speed (a measurement tool, not a test).
+add_executable(node_speed_subscriber bench/node_speed_subscriber.cpp)
+target_include_directories(node_speed_subscriber PRIVATE
+  ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+target_include_directories(node_speed_subscriber SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(node_speed_subscriber PRIVATE ${catkin_LIBRARIES})
+add_dependencies(node_speed_subscriber ${PROJECT_NAME}_generate_messages_cpp)
+set_target_properties(node_speed_subscriber PROPERTIES
+  RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
+
 # ---------------------------------------------------------------------------------------------
 # Tests of the ROS layer. Built by the `tests` target (catkin's test targets are not in `all`).
 # Every rostest gets a writable ROS_HOME, loopback networking and Debian's python first.
