@@ -14,7 +14,8 @@
 //      both stick (8 components on 6 velocities: G is singular)
 // Delassus matrix G = Wᵀ M⁻¹ W and c = Wᵀ(u + M⁻¹ h Δt) (16) with h = (m g, -ω × Θω); W per
 // contact: N = ẑ, T1 = x̂, T2 = ŷ at the contact point and the drilling torque about ẑ (absent
-// for coulomb). A small construction of its own (the simulator's lives in rigid_body_dynamics).
+// for coulomb). A small construction of its own (the simulator's lives in
+// contact/contact_jacobian.h).
 //
 // Solver options, the same for every law: modified_jacobi (46), tolerance_rel = 1e-10,
 // tolerance_abs = 1e-20 (only so that components converging to exactly 0 stop), relaxation

@@ -36,16 +36,14 @@ add_library(nonsmooth_sim_ros STATIC
   src/node/initial_conditions.cpp
   src/node/node_parameters.cpp
   src/node/node_services.cpp
-  src/node/simulation_node.cpp
-  src/node/urdf_scene.cpp
-  src/node/urdf_xml.cpp)
+  src/node/simulation_node.cpp)
 target_include_directories(nonsmooth_sim_ros PUBLIC
   ${PROJECT_SOURCE_DIR}/include
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
 target_include_directories(nonsmooth_sim_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS}
   ${urdfdom_INCLUDE_DIRS})
 target_link_libraries(nonsmooth_sim_ros PUBLIC
-  nonsmooth_sim_core ${catkin_LIBRARIES} ${urdfdom_LIBRARIES} tinyxml2::tinyxml2)
+  nonsmooth_sim_core nonsmooth_sim_scene_io ${catkin_LIBRARIES})
 add_dependencies(nonsmooth_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 add_executable(nonsmooth_sim_node src/node/main.cpp)
@@ -75,7 +73,6 @@ file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/ros_home)
 find_package(GTest REQUIRED)
 include(GoogleTest)
 add_executable(node_conversion_test EXCLUDE_FROM_ALL
-  test/node/urdf_scene_test.cpp
   test/node/initial_conditions_test.cpp
   test/node/conversions_test.cpp)
 target_link_libraries(node_conversion_test PRIVATE nonsmooth_sim_ros GTest::gtest GTest::gtest_main)

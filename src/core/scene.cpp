@@ -1,9 +1,11 @@
-// Scene validation and the observables of a state: energy, inclination, Jellett's integral.
+// Scene validation, the laws of collider pairs and the observables of a state.
 #include "nonsmooth_sim/core/scene.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +15,10 @@ namespace {
 // An inertia tensor read from a file or built in code is symmetric up to round-off of its
 // entries; a larger asymmetry is an input error.
 constexpr double kInertiaSymmetryTolerance = 1e-9;
+// The neutral element of min(μ_a, μ_b): the body's μ decides, however large.
+constexpr double kGroundFriction = std::numeric_limits<double>::max();
+// A rotation read from a file is orthonormal up to round-off.
+constexpr double kRotationTolerance = 1e-9;
 
 std::string BodyName(const Scene& scene, std::size_t b) {
   std::ostringstream s;
@@ -21,10 +27,10 @@ std::string BodyName(const Scene& scene, std::size_t b) {
   return s.str();
 }
 
-std::string SphereName(const Scene& scene, std::size_t i) {
+std::string ColliderName(const Scene& scene, std::size_t i) {
   std::ostringstream s;
-  s << "scene.spheres[" << i << "]";
-  if (!scene.spheres[i].name.empty()) s << " (" << scene.spheres[i].name << ")";
+  s << "scene.colliders[" << i << "]";
+  if (!scene.colliders[i].name.empty()) s << " (" << scene.colliders[i].name << ")";
   return s.str();
 }
 
@@ -52,25 +58,80 @@ void ValidateInertia(const std::string& where, const Eigen::Matrix3d& inertia) {
   }
 }
 
-void ValidateLaw(const std::string& where, const ContactLaw& law) {
-  if (!(std::isfinite(law.mu) && law.mu >= 0.0)) Reject(where + ".law.mu", law.mu, "finite, >= 0");
-  if (!(std::isfinite(law.rbar) && law.rbar >= 0.0)) {
-    Reject(where + ".law.rbar", law.rbar, "finite, >= 0 [m]");
+void ValidateCollider(const Scene& scene, std::size_t i) {
+  const Collider& collider = scene.colliders[i];
+  const std::string where = ColliderName(scene, i);
+  if (collider.name.empty()) throw std::invalid_argument(where + ".name must not be empty");
+  if (collider.body != kWorld &&
+      (collider.body < 0 || static_cast<std::size_t>(collider.body) >= scene.bodies.size())) {
+    std::ostringstream s;
+    s << where << ".body = " << collider.body << ": must index scene.bodies (in [0, "
+      << scene.bodies.size() << ")) or be kWorld (-1)";
+    throw std::invalid_argument(s.str());
   }
-  if (!(law.restitution >= 0.0 && law.restitution <= 1.0)) {
-    Reject(where + ".law.restitution", law.restitution, "in [0, 1]");
+  RequireFinite(where + ".pose", collider.pose.matrix());
+  const Eigen::Matrix3d r = collider.pose.linear();
+  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
+          kRotationTolerance ||
+      !(r.determinant() > 0.0)) {
+    throw std::invalid_argument(where + ".pose must be a rigid transform (rotation orthonormal)");
   }
-  if (FrictionSetName(law.friction_set) == "unknown") {
-    throw std::invalid_argument(where + ".law.friction_set is not one of " +
-                                FrictionSetNameList());
+  ValidateShape(collider.shape, where + ".shape");
+  if (collider.shape.type == ShapeType::kPlane && collider.body != kWorld) {
+    throw std::invalid_argument(where +
+                                ".shape: a plane is a static half-space, it cannot be on a body");
   }
-}
-
-Eigen::Vector3d WorldAngularMomentum(const RigidBody& body, const BodyState& state) {
-  return state.orientation.normalized() * (body.inertia * state.angular_velocity);
+  ValidateLaw(where + ".law", collider.law);
 }
 
 }  // namespace
+
+ContactLaw GroundLaw() {
+  ContactLaw law;
+  law.mu = kGroundFriction;
+  law.rbar = 0.0;
+  law.restitution = 0.0;
+  return law;
+}
+
+Collider GroundPlane(const ContactLaw& law) {
+  Collider ground;
+  ground.name = "ground";
+  ground.body = kWorld;
+  ground.shape = Shape::Plane();
+  ground.law = law;
+  return ground;
+}
+
+ContactLaw CombineLaws(const Collider& a, const Collider& b) {
+  ContactLaw law;
+  law.mu = std::min(a.law.mu, b.law.mu);
+  law.rbar = std::max(a.law.rbar, b.law.rbar);
+  law.restitution = std::max(a.law.restitution, b.law.restitution);
+  // the set of the first collider on a body (a comes first in the scene unless it is static)
+  law.friction_set = a.body != kWorld ? a.law.friction_set : b.law.friction_set;
+  return law;
+}
+
+int FindCollider(const Scene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+    if (scene.colliders[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void ValidateLaw(const std::string& where, const ContactLaw& law) {
+  if (!(std::isfinite(law.mu) && law.mu >= 0.0)) Reject(where + ".mu", law.mu, "finite, >= 0");
+  if (!(std::isfinite(law.rbar) && law.rbar >= 0.0)) {
+    Reject(where + ".rbar", law.rbar, "finite, >= 0 [m]");
+  }
+  if (!(law.restitution >= 0.0 && law.restitution <= 1.0)) {
+    Reject(where + ".restitution", law.restitution, "in [0, 1]");
+  }
+  if (FrictionSetName(law.friction_set) == "unknown") {
+    throw std::invalid_argument(where + ".friction_set is not one of " + FrictionSetNameList());
+  }
+}
 
 void ValidateScene(const Scene& scene) {
   if (scene.bodies.empty()) throw std::invalid_argument("scene.bodies must not be empty");
@@ -83,20 +144,13 @@ void ValidateScene(const Scene& scene) {
     ValidateInertia(where, body.inertia);
     RequireFinite(where + ".com_in_link", body.com_in_link);
   }
-  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-    const Sphere& sphere = scene.spheres[i];
-    const std::string where = SphereName(scene, i);
-    if (sphere.body < 0 || static_cast<std::size_t>(sphere.body) >= scene.bodies.size()) {
-      std::ostringstream s;
-      s << where << ".body = " << sphere.body << ": must index scene.bodies, in [0, "
-        << scene.bodies.size() - 1 << "]";
-      throw std::invalid_argument(s.str());
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+    ValidateCollider(scene, i);
+    if (!names.insert(scene.colliders[i].name).second) {
+      throw std::invalid_argument(ColliderName(scene, i) +
+                                  ".name is used twice (contacts are addressed by name)");
     }
-    RequireFinite(where + ".center", sphere.center);
-    if (!(std::isfinite(sphere.radius) && sphere.radius > 0.0)) {
-      Reject(where + ".radius", sphere.radius, "finite, > 0 [m]");
-    }
-    ValidateLaw(where, sphere.law);
   }
   RequireFinite("scene.gravity", scene.gravity);
   ValidateState(scene, scene.initial_state);
@@ -142,14 +196,11 @@ double Inclination(const BodyState& state) {
   return std::atan2(std::hypot(e3.x(), e3.y()), e3.z());
 }
 
-double JellettIntegral(const Scene& scene, const std::vector<BodyState>& state, int sphere) {
-  const Sphere& s = scene.spheres.at(static_cast<std::size_t>(sphere));
-  const RigidBody& body = scene.bodies.at(static_cast<std::size_t>(s.body));
-  const BodyState& b = state.at(static_cast<std::size_t>(s.body));
-  // r_S - r_P = ρ ẑ - A K_r_SM, L_S = A Θ K_ω
-  const Eigen::Vector3d s_minus_p =
-      s.radius * Eigen::Vector3d::UnitZ() - b.orientation.normalized() * s.center;
-  return WorldAngularMomentum(body, b).dot(s_minus_p);
+Eigen::Isometry3d BodyPose(const BodyState& state) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = state.orientation.normalized().toRotationMatrix();
+  pose.translation() = state.position;
+  return pose;
 }
 
 }  // namespace nonsmooth_sim

@@ -2,6 +2,7 @@
 #include "nonsmooth_sim/core/tippe_top.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace nonsmooth_sim {
 
@@ -37,21 +38,36 @@ Scene MakeTippeTopScene(const TippeTopParameters& parameters,
   law.restitution = parameters.restitution;
   law.friction_set = parameters.friction_set;
 
-  Sphere big;
+  Collider big;
   big.name = "big_sphere";
   big.body = 0;
-  big.center = Eigen::Vector3d(0.0, 0.0, parameters.big_offset);
-  big.radius = parameters.big_radius;
+  big.pose.translation() = Eigen::Vector3d(0.0, 0.0, parameters.big_offset);
+  big.shape = Shape::Sphere(parameters.big_radius);
   big.law = law;
-  Sphere peg = big;
+  Collider peg = big;
   peg.name = "peg_sphere";
-  peg.center = Eigen::Vector3d(0.0, 0.0, parameters.peg_offset);
-  peg.radius = parameters.peg_radius;
-  scene.spheres = {big, peg};
+  peg.pose.translation() = Eigen::Vector3d(0.0, 0.0, parameters.peg_offset);
+  peg.shape = Shape::Sphere(parameters.peg_radius);
+  scene.colliders = {big, peg, GroundPlane()};
 
   scene.gravity = Eigen::Vector3d(0.0, 0.0, -parameters.gravity);
   scene.initial_state = {TippeTopInitialState(parameters, initial)};
   return scene;
+}
+
+double JellettIntegral(const Scene& scene, const std::vector<BodyState>& state, int sphere) {
+  const Collider& s = scene.colliders.at(static_cast<std::size_t>(sphere));
+  if (s.shape.type != ShapeType::kSphere || s.body == kWorld) {
+    throw std::invalid_argument("JellettIntegral: collider " + s.name +
+                                " is not a sphere on a body");
+  }
+  const RigidBody& body = scene.bodies.at(static_cast<std::size_t>(s.body));
+  const BodyState& b = state.at(static_cast<std::size_t>(s.body));
+  const Eigen::Quaterniond p = b.orientation.normalized();
+  // r_S - r_P = ρ ẑ - A K_r_SM, L_S = A Θ K_ω
+  const Eigen::Vector3d s_minus_p =
+      s.shape.radius * Eigen::Vector3d::UnitZ() - p * s.pose.translation();
+  return (p * (body.inertia * b.angular_velocity)).dot(s_minus_p);
 }
 
 }  // namespace nonsmooth_sim

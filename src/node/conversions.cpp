@@ -1,6 +1,9 @@
 // Core state -> ROS messages. See conversions.h.
 #include "nonsmooth_sim/node/conversions.h"
 
+#include "nonsmooth_sim/core/tippe_top.h"
+
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -25,19 +28,22 @@ void Set(const Eigen::Quaterniond& q, geometry_msgs::Quaternion* p) {
   p->w = q.w();
 }
 
-// The contact report of sphere i; an open contact before the first step (the core reports
-// contacts "from the last step", none after a SetState).
-const ContactState& ContactOf(const Simulator& sim, std::size_t i) {
-  static const ContactState kOpen;
-  return i < sim.contacts().size() ? sim.contacts()[i] : kOpen;
-}
-
-// the body's first sphere, for Jellett's integral; -1 without spheres
+// The body's first sphere collider, for Jellett's integral; -1 without one.
 int FirstSphere(const Scene& scene, int body) {
-  for (int i = 0; i < static_cast<int>(scene.spheres.size()); ++i) {
-    if (scene.spheres[i].body == body) return i;
+  for (int i = 0; i < static_cast<int>(scene.colliders.size()); ++i) {
+    const Collider& c = scene.colliders[static_cast<std::size_t>(i)];
+    if (c.body == body && c.shape.type == ShapeType::kSphere) return i;
   }
   return -1;
+}
+
+// The rotation whose columns are t1, t2, n: the contact frame's axes in the world.
+Eigen::Quaterniond FrameRotation(const ContactFrame& frame) {
+  Eigen::Matrix3d r;
+  r.col(0) = frame.tangent1;
+  r.col(1) = frame.tangent2;
+  r.col(2) = frame.normal;
+  return Eigen::Quaterniond(r);
 }
 
 constexpr double kMarkerShaft = 0.001;  // arrow shaft diameter [m]
@@ -94,8 +100,16 @@ std::string GraphName(const std::string& name) {
 FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame) {
   FrameNames names;
   names.world = world_frame;
-  for (const Sphere& s : scene.spheres) names.contacts.push_back(GraphName(s.name) + "_contact");
+  for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+    if (scene.colliders[i].body == kWorld) continue;
+    names.slots.push_back(static_cast<int>(i));
+    names.contacts.push_back(GraphName(scene.colliders[i].name) + "_contact");
+  }
   return names;
+}
+
+const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot) {
+  return sim.FindContact(frames.slots[slot]);
 }
 
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state) {
@@ -144,23 +158,35 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
   msg->solver_iterations = last_step.solver.iterations;
   msg->solver_residual = last_step.solver.residual;
   msg->solver_converged = last_step.solver.converged;
-  msg->contacts.resize(scene.spheres.size());
-  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-    const Sphere& sphere = scene.spheres[i];
-    const ContactState& c = ContactOf(sim, i);
+  const std::vector<ContactState>& contacts = sim.contacts();
+  msg->contacts.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const ContactState& c = contacts[i];
     ContactInfo& info = msg->contacts[i];
-    info.name = sphere.name;
-    info.body = scene.bodies[sphere.body].name;
-    info.frame = frames.contacts[i];
-    info.friction_set = std::string(FrictionSetName(sphere.law.friction_set));
-    info.mu = sphere.law.mu;
-    info.average_friction_radius = sphere.law.rbar;
-    info.closed = c.closed;
+    const Collider& b = scene.colliders[static_cast<std::size_t>(c.collider_b)];
+    const Collider& a = scene.colliders[static_cast<std::size_t>(c.collider_a)];
+    info.name = ContactName(scene, c);
+    info.collision = b.name;
+    info.body = scene.bodies[static_cast<std::size_t>(c.body_b)].name;
+    info.other_collision = a.name;
+    info.other_body = c.body_a == kWorld ? "" : scene.bodies[static_cast<std::size_t>(c.body_a)].name;
+    info.feature = c.feature;
+    // the slot frame of B's collider when this is its first contact
+    info.frame.clear();
+    for (std::size_t k = 0; k < frames.slots.size(); ++k) {
+      if (frames.slots[k] == c.collider_b && sim.FindContact(c.collider_b) == &c) {
+        info.frame = frames.contacts[k];
+      }
+    }
+    info.friction_set = std::string(FrictionSetName(c.law.friction_set));
+    info.mu = c.law.mu;
+    info.average_friction_radius = c.dimension == 4 ? c.law.rbar : 0.0;
+    info.closed = true;
     info.gap = c.gap;
     Set(c.point, &info.position);
-    Set(c.normal, &info.normal);
-    Set(Eigen::Vector3d::UnitX(), &info.tangent1);
-    Set(Eigen::Vector3d::UnitY(), &info.tangent2);
+    Set(c.frame.normal, &info.normal);
+    Set(c.frame.tangent1, &info.tangent1);
+    Set(c.frame.tangent2, &info.tangent2);
     info.normal_percussion = c.percussion[0];
     info.tangential_percussion = {c.percussion[1], c.percussion[2]};
     info.drilling_percussion = c.percussion[3];
@@ -176,7 +202,7 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
 void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                     tf2_msgs::TFMessage* msg) {
   const Scene& scene = sim.scene();
-  msg->transforms.resize(scene.bodies.size() + scene.spheres.size());
+  msg->transforms.resize(scene.bodies.size() + frames.slots.size());
   std::size_t k = 0;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b, ++k) {
     geometry_msgs::TransformStamped& t = msg->transforms[k];
@@ -189,52 +215,83 @@ void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::T
     t.transform.translation.z = pose.position.z;
     t.transform.rotation = pose.orientation;
   }
-  for (std::size_t i = 0; i < scene.spheres.size(); ++i, ++k) {
+  for (std::size_t i = 0; i < frames.slots.size(); ++i, ++k) {
     geometry_msgs::TransformStamped& t = msg->transforms[k];
     t.header.stamp = stamp;
     t.header.frame_id = frames.world;
     t.child_frame_id = frames.contacts[i];
-    Set(ContactOf(sim, i).point, &t.transform.translation);
-    t.transform.rotation = geometry_msgs::Quaternion();
-    t.transform.rotation.w = 1.0;
+    if (const ContactState* c = SlotContact(sim, frames, i)) {
+      // at the contact point, axes (t1, t2, n)
+      Set(c->point, &t.transform.translation);
+      Set(FrameRotation(c->frame), &t.transform.rotation);
+    } else {
+      // no contact: at the collider's origin, world axes
+      const Collider& collider = scene.colliders[static_cast<std::size_t>(frames.slots[i])];
+      const Eigen::Vector3d origin =
+          BodyPose(sim.state()[static_cast<std::size_t>(collider.body)]) *
+          collider.pose.translation();
+      Set(origin, &t.transform.translation);
+      t.transform.rotation = geometry_msgs::Quaternion();
+      t.transform.rotation.w = 1.0;
+    }
   }
 }
 
-void FillWrench(const Simulator& sim, int sphere, const FrameNames& frames, const ros::Time& stamp,
-                geometry_msgs::WrenchStamped* msg) {
-  const ContactState& c = ContactOf(sim, static_cast<std::size_t>(sphere));
-  const Eigen::Vector4d lambda =
-      c.closed ? Eigen::Vector4d(c.percussion / sim.options().time_step) : Eigen::Vector4d::Zero();
+bool FillWrench(const Simulator& sim, std::size_t slot, const FrameNames& frames,
+                const ros::Time& stamp, geometry_msgs::WrenchStamped* msg) {
   msg->header.stamp = stamp;
-  msg->header.frame_id = frames.contacts[sphere];
-  // contact frame axes: tangent1 = x, tangent2 = y, normal = z
-  msg->wrench.force.x = lambda[1];
-  msg->wrench.force.y = lambda[2];
-  msg->wrench.force.z = lambda[0];
-  msg->wrench.torque.x = 0.0;
-  msg->wrench.torque.y = 0.0;
-  msg->wrench.torque.z = lambda[3];
+  msg->header.frame_id = frames.contacts[slot];
+  const ContactState* first = SlotContact(sim, frames, slot);
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // world
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // world, about the first contact point
+  if (first != nullptr) {
+    const double dt = sim.options().time_step;
+    const int collider = frames.slots[slot];
+    for (const ContactState& c : sim.contacts()) {
+      if (c.collider_a != collider && c.collider_b != collider) continue;
+      // the force on B; on A it is the opposite
+      const double sign = c.collider_b == collider ? 1.0 : -1.0;
+      const Eigen::Vector3d f = sign / dt *
+                                (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
+                                 c.percussion[2] * c.frame.tangent2);
+      force += f;
+      torque += (c.point - first->point).cross(f) + sign / dt * c.percussion[3] * c.frame.normal;
+    }
+    // in the slot frame's axes (t1, t2, n of the first contact)
+    const Eigen::Matrix3d axes = FrameRotation(first->frame).toRotationMatrix();
+    force = axes.transpose() * force;
+    torque = axes.transpose() * torque;
+  }
+  Set(force, &msg->wrench.force);
+  Set(torque, &msg->wrench.torque);
+  return first != nullptr;
 }
 
 void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
-                 double force_scale, double torque_scale, visualization_msgs::MarkerArray* msg) {
-  const std::size_t n = sim.scene().spheres.size();
+                 double force_scale, double torque_scale, std::size_t previous_count,
+                 visualization_msgs::MarkerArray* msg) {
+  const std::vector<ContactState>& contacts = sim.contacts();
+  const std::size_t n = std::max(contacts.size(), previous_count);
   msg->markers.resize(2 * n);
   const double dt = sim.options().time_step;
   for (std::size_t i = 0; i < n; ++i) {
-    const ContactState& c = ContactOf(sim, i);
     visualization_msgs::Marker* force = &msg->markers[2 * i];
     visualization_msgs::Marker* torque = &msg->markers[2 * i + 1];
-    if (!c.closed) {
+    if (i >= contacts.size()) {
+      // a marker of the last message that has no contact now
       Delete(frames.world, stamp, "contact_force", static_cast<int>(i), force);
       Delete(frames.world, stamp, "drilling_torque", static_cast<int>(i), torque);
       continue;
     }
-    const Eigen::Vector3d f(c.percussion[1] / dt, c.percussion[2] / dt, c.percussion[0] / dt);
+    const ContactState& c = contacts[i];
+    const Eigen::Vector3d f = (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
+                               c.percussion[2] * c.frame.tangent2) /
+                              dt;
     Arrow(frames.world, stamp, "contact_force", static_cast<int>(i), c.point,
           c.point + force_scale * f, 1.0f, 0.55f, 0.0f, force);
     Arrow(frames.world, stamp, "drilling_torque", static_cast<int>(i), c.point,
-          c.point + torque_scale * (c.percussion[3] / dt) * c.normal, 0.1f, 0.4f, 1.0f, torque);
+          c.point + torque_scale * (c.percussion[3] / dt) * c.frame.normal, 0.1f, 0.4f, 1.0f,
+          torque);
   }
 }
 

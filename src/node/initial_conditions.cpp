@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 
 namespace nonsmooth_sim::node {
@@ -23,12 +24,21 @@ void RequireFinite(const char* field, bool finite) {
   if (!finite) throw std::invalid_argument(std::string(field) + " must be finite");
 }
 
-// Height of r_S at which the lowest sphere of `body` just touches z = 0 in orientation `q`;
-// `fallback` for a body without spheres.
+// Height of r_S at which the lowest collider of `body` just touches z = 0 in orientation `q`
+// (its gap against the ground plane by the collision table); `fallback` for a body without
+// colliders the table can put on a plane.
 double TouchingHeight(const Scene& scene, int body, const Eigen::Quaterniond& q, double fallback) {
+  const Shape ground = Shape::Plane();
+  Eigen::Isometry3d body_pose = Eigen::Isometry3d::Identity();
+  body_pose.linear() = q.normalized().toRotationMatrix();  // r_S at the origin
   double height = -std::numeric_limits<double>::infinity();
-  for (const Sphere& s : scene.spheres) {
-    if (s.body == body) height = std::max(height, s.radius - (q * s.center).z());
+  for (const Collider& c : scene.colliders) {
+    if (c.body != body) continue;
+    ContactGeometry points[kMaxPairContacts];
+    const int count = Collide(ground, Eigen::Isometry3d::Identity(), c.shape, body_pose * c.pose,
+                              std::numeric_limits<double>::infinity(), points);
+    // gap = height of the lowest point with r_S at z = 0: r_S must be raised by -gap
+    for (int k = 0; k < count; ++k) height = std::max(height, -points[k].gap);
   }
   return std::isfinite(height) ? height : fallback;
 }
@@ -70,7 +80,7 @@ void ValidateInitialConditions(const InitialConditions& initial) {
   }
 }
 
-std::vector<BodyState> InitialState(const UrdfScene& urdf, int body,
+std::vector<BodyState> InitialState(const scene_io::UrdfScene& urdf, int body,
                                     const InitialConditions& initial) {
   ValidateInitialConditions(initial);
   const Scene& scene = urdf.scene;
@@ -82,6 +92,10 @@ std::vector<BodyState> InitialState(const UrdfScene& urdf, int body,
                                        initial.spin.value_or(defaults.spin)};
 
   std::vector<BodyState> state = scene.initial_state;
+  const bool any = initial.inclination || initial.spin || initial.position ||
+                   initial.orientation || initial.linear_velocity || initial.angular_velocity;
+  // a scene that is not a Tippe-Top starts at its URDF pose (and ~initial_state) unless asked
+  if (!urdf.tippe_top[body] && !any) return state;
   BodyState& s = state[body];
   if (urdf.tippe_top[body]) {
     // the core's own start for the Tippe-Top, bit for bit

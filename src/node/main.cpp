@@ -4,9 +4,9 @@
 
 #include <exception>
 
+#include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/node/node_parameters.h"
 #include "nonsmooth_sim/node/simulation_node.h"
-#include "nonsmooth_sim/node/urdf_scene.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "nonsmooth_sim");
@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   try {
     using namespace nonsmooth_sim::node;
+    // the convex pairs without a closed form (box–box, cylinder–box, ...) through FCL
+    nonsmooth_sim::RegisterFclPairs();
     NodeParameters parameters = ReadNodeParameters(nh, private_nh);
     UrdfScene urdf = SceneFromUrdf(parameters.urdf_xml, parameters.scene);
     SimulationNode node(nh, private_nh, std::move(parameters), std::move(urdf));

@@ -78,6 +78,50 @@ class ParameterReader {
   const ros::NodeHandle& nh_;
 };
 
+// ~initial_state: the YAML initial-state file loaded as parameters (rosparam load FILE
+// ~initial_state): bodies/<link>/{position, orientation, linear_velocity, angular_velocity}.
+scene_io::InitialStateSpec ReadInitialState(const ParameterReader& r) {
+  scene_io::InitialStateSpec spec;
+  XmlRpc::XmlRpcValue root;
+  if (!r.Get("initial_state", &root)) return spec;
+  if (root.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    r.Fail("initial_state", "expected a map with the key bodies");
+  }
+  for (auto& [key, value] : root) {
+    if (key != "bodies") r.Fail("initial_state/" + key, "unknown key, expected bodies");
+    if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      r.Fail("initial_state/bodies", "expected a map from link names to states");
+    }
+    for (auto& [link, body] : value) {
+      const std::string where = "initial_state/bodies/" + link;
+      if (body.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+        r.Fail(where, "expected a map with position, orientation, linear_velocity, "
+                      "angular_velocity");
+      }
+      scene_io::BodyInitialState& state = spec[link];
+      for (auto& [field, unused] : body) {
+        (void)unused;
+        if (field == "position") {
+          state.position = Eigen::Vector3d(*r.Numbers(where + "/position", 3));
+        } else if (field == "orientation") {
+          const Eigen::VectorXd q = *r.Numbers(where + "/orientation", 4);
+          if (q.squaredNorm() == 0.0) r.Fail(where + "/orientation", "must not be zero");
+          state.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+        } else if (field == "linear_velocity") {
+          state.linear_velocity = Eigen::Vector3d(*r.Numbers(where + "/linear_velocity", 3));
+        } else if (field == "angular_velocity") {
+          state.angular_velocity = Eigen::Vector3d(*r.Numbers(where + "/angular_velocity", 3));
+        } else {
+          r.Fail(where + "/" + field,
+                 "unknown key, expected position, orientation, linear_velocity, "
+                 "angular_velocity");
+        }
+      }
+    }
+  }
+  return spec;
+}
+
 void RequireRate(const char* name, double rate, bool zero_allowed) {
   if (!(rate > 0.0 || (zero_allowed && rate == 0.0))) {
     throw std::invalid_argument(std::string("parameter ~") + name + ": must be " +
@@ -176,6 +220,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   r.Bool("gap_correction", &p.simulator.gap_correction);
 
   // initial conditions
+  p.initial_state = ReadInitialState(r);
   r.String("initial/body", &p.initial_body);
   p.initial.inclination = r.Number("initial/inclination");
   p.initial.spin = r.Number("initial/spin");

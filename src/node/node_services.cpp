@@ -151,16 +151,13 @@ bool SimulationNode::OnSetFrictionSet(SetFrictionSet::Request& req,
                          FrictionSetNameList() + "; nothing changed";
     return true;
   }
-  std::optional<int> sphere;
-  if (!req.contact.empty()) {
-    sphere = SphereIndex(req.contact);
-    if (*sphere < 0) {
-      res.success = false;
-      res.status_message = "unknown contact \"" + req.contact + "\"; nothing changed";
-      return true;
-    }
+  try {
+    sim_->SetFrictionSet(*set, req.contact);
+  } catch (const std::invalid_argument& e) {
+    res.success = false;
+    res.status_message = std::string(e.what()) + "; nothing changed";
+    return true;
   }
-  sim_->SetFrictionSet(*set, sphere);
   res.success = true;
   res.status_message = "friction set at t = " + std::to_string(sim_->time()) +
                        " s: " + FrictionSetSummary();
@@ -170,15 +167,27 @@ bool SimulationNode::OnSetFrictionSet(SetFrictionSet::Request& req,
 bool SimulationNode::OnGetFrictionSet(GetFrictionSet::Request& req,
                                       GetFrictionSet::Response& res) {
   const auto lock = LockForService();
-  const auto& spheres = sim_->scene().spheres;
-  for (int i = 0; i < static_cast<int>(spheres.size()); ++i) {
-    if (!req.contact.empty() && spheres[i].name != req.contact) continue;
-    res.contacts.push_back(spheres[i].name);
-    res.friction_sets.emplace_back(FrictionSetName(spheres[i].law.friction_set));
+  if (!req.contact.empty()) {
+    // one collision or one contact "<a>/<b>"
+    try {
+      const FrictionSet set = sim_->FrictionSetOf(req.contact);
+      res.contacts.push_back(req.contact);
+      res.friction_sets.emplace_back(FrictionSetName(set));
+      res.success = true;
+      res.status_message = FrictionSetSummary();
+    } catch (const std::invalid_argument& e) {
+      res.success = false;
+      res.status_message = e.what();
+    }
+    return true;
   }
-  res.success = req.contact.empty() || !res.contacts.empty();
-  res.status_message = res.success ? FrictionSetSummary()
-                                   : "unknown contact \"" + req.contact + "\"";
+  for (const Collider& c : sim_->scene().colliders) {
+    if (c.body == kWorld) continue;
+    res.contacts.push_back(c.name);
+    res.friction_sets.emplace_back(FrictionSetName(c.law.friction_set));
+  }
+  res.success = true;
+  res.status_message = FrictionSetSummary();
   return true;
 }
 

@@ -34,9 +34,13 @@ int ResolveBody(const UrdfScene& urdf, const std::string& name) {
   throw std::invalid_argument("parameter ~initial/body: \"" + name + "\" is not a free body");
 }
 
-Scene ConfiguredScene(const UrdfScene& urdf, int body, const InitialConditions& initial) {
+Scene ConfiguredScene(const UrdfScene& urdf, int body, const InitialConditions& initial,
+                      const scene_io::InitialStateSpec& initial_state) {
   Scene scene = urdf.scene;
   scene.initial_state = InitialState(urdf, body, initial);
+  if (!initial_state.empty()) {
+    scene.initial_state = scene_io::ApplyInitialState(scene, scene.initial_state, initial_state);
+  }
   return scene;
 }
 
@@ -58,7 +62,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
     : parameters_(std::move(parameters)),
       urdf_(std::move(urdf)),
       initial_body_(ResolveBody(urdf_, parameters_.initial_body)),
-      configured_scene_(ConfiguredScene(urdf_, initial_body_, parameters_.initial)),
+      configured_scene_(ConfiguredScene(urdf_, initial_body_, parameters_.initial,
+                                        parameters_.initial_state)),
       frames_(MakeFrameNames(urdf_.scene, parameters_.world_frame)),
       nh_(nh),
       private_nh_(private_nh),
@@ -74,11 +79,12 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   contacts_pub_ = private_nh_.advertise<ContactInfoArray>("contacts", queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
-  for (const Sphere& s : urdf_.scene.spheres) {
+  for (int collider : frames_.slots) {
+    const std::string& name = urdf_.scene.colliders[static_cast<std::size_t>(collider)].name;
     wrench_pubs_.push_back(
-        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + GraphName(s.name), queue));
+        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + GraphName(name), queue));
   }
-  wrench_closed_.assign(urdf_.scene.spheres.size(), false);
+  wrench_closed_.assign(frames_.slots.size(), false);
 
   auto& p = private_nh_;
   services_ = {
@@ -105,9 +111,9 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   PublishClock(/*flush=*/true);
   anchor_wall_ = unpaused_at_ = previous_diagnostics_wall_ = Clock::now();
 
-  ROS_INFO("nonsmooth_sim: %zu bodies, %zu contacts, friction set %s, time step %g s, "
+  ROS_INFO("nonsmooth_sim: %zu bodies, %zu collisions, friction set %s, time step %g s, "
            "real-time factor %g%s, %s",
-           urdf_.scene.bodies.size(), urdf_.scene.spheres.size(), FrictionSetSummary().c_str(),
+           urdf_.scene.bodies.size(), urdf_.scene.colliders.size(), FrictionSetSummary().c_str(),
            parameters_.simulator.time_step, parameters_.real_time_factor,
            parameters_.real_time_factor == 0.0 ? " (as fast as possible)" : "",
            paused_ ? "paused" : "running");
@@ -315,9 +321,9 @@ void SimulationNode::PublishContacts() {
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    const bool closed = i < sim_->contacts().size() && sim_->contacts()[i].closed;
+    const bool closed = SlotContact(*sim_, frames_, i) != nullptr;
     if ((closed || wrench_closed_[i]) && wrench_pubs_[i].getNumSubscribers() > 0) {
-      FillWrench(*sim_, static_cast<int>(i), frames_, stamp, &wrench_msg_);
+      FillWrench(*sim_, i, frames_, stamp, &wrench_msg_);
       wrench_pubs_[i].publish(wrench_msg_);
     }
     wrench_closed_[i] = closed;
@@ -333,7 +339,8 @@ void SimulationNode::PublishState() {
 void SimulationNode::PublishMarkers() {
   if (markers_pub_.getNumSubscribers() == 0) return;
   FillMarkers(*sim_, frames_, StampOf(sim_->time()), parameters_.marker_force_scale,
-              parameters_.marker_torque_scale, &markers_msg_);
+              parameters_.marker_torque_scale, markers_count_, &markers_msg_);
+  markers_count_ = sim_->contacts().size();
   markers_pub_.publish(markers_msg_);
 }
 
@@ -359,6 +366,7 @@ void SimulationNode::AfterReset() {
     wrench_pubs_[i].publish(zero);
   }
   markers_pub_.publish(DeleteAllMarkers(frames_.world));
+  markers_count_ = 0;
   anchor_wall_ = Clock::now();
   steps_since_anchor_ = 0;
 }
@@ -422,14 +430,6 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
 // ---------------------------------------------------------------------------------------------
 // lookups
 
-int SimulationNode::SphereIndex(const std::string& name) const {
-  const auto& spheres = urdf_.scene.spheres;
-  for (int i = 0; i < static_cast<int>(spheres.size()); ++i) {
-    if (spheres[i].name == name) return i;
-  }
-  return -1;
-}
-
 int SimulationNode::BodyIndex(const std::string& name) const {
   const auto& bodies = urdf_.scene.bodies;
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
@@ -439,15 +439,22 @@ int SimulationNode::BodyIndex(const std::string& name) const {
 }
 
 std::string SimulationNode::FrictionSetSummary() const {
-  // "sphere" when all contacts agree, else "big_sphere: exact, peg_sphere: coulomb"
-  const auto& spheres = sim_->scene().spheres;
+  // "sphere" when all collisions on bodies agree, else "big_sphere: exact, peg_sphere: coulomb"
+  const Scene& scene = sim_->scene();
+  std::vector<const Collider*> on_bodies;
+  for (const Collider& c : scene.colliders) {
+    if (c.body != kWorld) on_bodies.push_back(&c);
+  }
+  if (on_bodies.empty()) return "none";
   bool same = true;
-  for (const Sphere& s : spheres) same = same && s.law.friction_set == spheres[0].law.friction_set;
-  if (spheres.empty()) return "none";
-  if (same) return std::string(FrictionSetName(spheres[0].law.friction_set));
+  for (const Collider* c : on_bodies) {
+    same = same && c->law.friction_set == on_bodies[0]->law.friction_set;
+  }
+  if (same) return std::string(FrictionSetName(on_bodies[0]->law.friction_set));
   std::string out;
-  for (const Sphere& s : spheres) {
-    out += (out.empty() ? "" : ", ") + s.name + ": " + std::string(FrictionSetName(s.law.friction_set));
+  for (const Collider* c : on_bodies) {
+    out += (out.empty() ? "" : ", ") + c->name + ": " +
+           std::string(FrictionSetName(c->law.friction_set));
   }
   return out;
 }

@@ -66,6 +66,7 @@ const std::map<std::string, Setter>& ValueOptions() {
          const auto set = FrictionSetFromName(v);
          if (!set) throw BadValue(o, v, "one of " + FrictionSetNameList());
          c.parameters.friction_set = *set;
+         c.friction_set_given = true;
        }},
       {"--solver",
        [](RunConfig& c, const std::string& o, const std::string& v) {
@@ -115,12 +116,14 @@ const std::map<std::string, Setter>& ValueOptions() {
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.parameters.mu = ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false,
                                        false, "a finite friction coefficient >= 0");
+         c.mu_given = true;
        }},
       {"--contact-radius",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.parameters.contact_radius =
              ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false, false,
                          "a finite contact radius R >= 0 m");
+         c.contact_radius_given = true;
        }},
       {"--inclination",
        [](RunConfig& c, const std::string& o, const std::string& v) {
@@ -132,6 +135,14 @@ const std::map<std::string, Setter>& ValueOptions() {
          c.initial.spin = ParseNumber(o, v, -std::numeric_limits<double>::max(),
                                       std::numeric_limits<double>::max(), false, false,
                                       "a finite spin in rad/s");
+       }},
+      {"--urdf",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.urdf_path = ParsePath(o, v);
+       }},
+      {"--initial",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.initial_path = ParsePath(o, v);
        }},
       {"--csv",
        [](RunConfig& c, const std::string& o, const std::string& v) {
@@ -154,8 +165,14 @@ const std::map<std::string, Setter>& ValueOptions() {
 std::string UsageText() {
   std::ostringstream s;
   s << "usage: simulate [options]\n"
-       "Runs the Tippe-Top (Leine & Glocker 2003 parameters) headless with Moreau's midpoint\n"
-       "time-stepping and writes a CSV time series and a JSON summary.\n\n"
+       "Runs a scene headless with Moreau's midpoint time-stepping and writes a CSV time series\n"
+       "and a JSON summary: the built-in Tippe-Top (Leine & Glocker 2003 parameters), or any\n"
+       "URDF scene with --urdf.\n\n"
+       "  --urdf FILE           the scene: free bodies, their collisions and laws, static\n"
+       "                        links, the ground (docs/urdf.md); default: the Tippe-Top\n"
+       "  --initial FILE        initial state of a --urdf scene (YAML, bodies: {<link>:\n"
+       "                        {position, orientation, linear_velocity, angular_velocity}});\n"
+       "                        default: the URDF pose, at rest\n"
        "  --friction-set NAME   "
     << FrictionSetNameList()
     << " (default sphere)\n"
@@ -179,10 +196,13 @@ std::string UsageText() {
        "  --relaxation ALPHA    alpha of (43), in (0, 2) (default 1)\n"
        "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
        "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
-       "  --mu MU               friction coefficient of both contacts (default 0.3)\n"
-       "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4)\n"
-       "  --inclination THETA   initial inclination [rad] in [0, pi] (default 0.1)\n"
-       "  --spin OMEGA          initial spin about the symmetry axis [rad/s] (default 180)\n"
+       "  --mu MU               friction coefficient of every contact (default: 0.3 for the\n"
+       "                        Tippe-Top, the URDF's for --urdf)\n"
+       "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4 for\n"
+       "                        the Tippe-Top, the URDF's patch_radius for --urdf)\n"
+       "  --inclination THETA   Tippe-Top: initial inclination [rad] in [0, pi] (default 0.1)\n"
+       "  --spin OMEGA          Tippe-Top: initial spin about the symmetry axis [rad/s]\n"
+       "                        (default 180)\n"
        "  --gyroscopic SCHEME   explicit (the paper's, default) or implicit_midpoint; explicit is\n"
        "                        safe for dt*|omega| <= "
     << kExplicitGyroscopicMaxDtOmega
@@ -192,8 +212,12 @@ std::string UsageText() {
     << kGapCorrectionSlop
     << " m is\n"
        "                        lifted back to it; the lifts are reported in the summary)\n"
-       "  --csv FILE            time series: t, position, quaternion, theta, energy, Jellett,\n"
-       "                        vertical spin, per contact closed/percussions, iterations\n"
+       "  --csv FILE            time series. Tippe-Top: t, position, quaternion, theta, energy,\n"
+       "                        Jellett, vertical spin, per sphere closed/percussions,\n"
+       "                        iterations. --urdf: t, per body <link>/x y z qx qy qz qw vx vy\n"
+       "                        vz wx wy wz (link frame; v of the centre of mass and omega in\n"
+       "                        the world), energy, closed contacts, islands, deepest\n"
+       "                        penetration, iterations, converged\n"
        "  --summary FILE        JSON summary\n"
        "  --decimate N          write every N-th step to the CSV (default 10)\n"
        "  --quiet               no report on stdout, no progress bar\n"
@@ -238,6 +262,21 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
         value = argv[++k];
       }
       option->second(config, arg, value);
+    }
+    if (!config.initial_path.empty() && config.urdf_path.empty()) {
+      throw Error{"--initial needs --urdf (the built-in Tippe-Top takes --inclination, --spin)"};
+    }
+    if (!config.urdf_path.empty()) {
+      for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        for (const char* tippe : {"--inclination", "--spin"}) {
+          if (arg.rfind(tippe, 0) == 0) {
+            throw Error{std::string(tippe) +
+                        " is for the built-in Tippe-Top; a --urdf scene starts from --initial "
+                        "FILE.yaml"};
+          }
+        }
+      }
     }
     if (std::llround(config.duration / config.options.time_step) < 1) {
       throw Error{"--duration " + std::to_string(config.duration) +

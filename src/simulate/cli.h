@@ -1,4 +1,5 @@
-// Command line of the headless `simulate` executable: the Tippe-Top with chosen friction set,
+// Command line of the headless `simulate` executable: the built-in Tippe-Top or any URDF scene
+// (--urdf, with initial conditions from a YAML file, --initial), with chosen friction set,
 // solver, time step, tolerances and initial conditions.
 #ifndef NONSMOOTH_SIM_SIMULATE_CLI_H_
 #define NONSMOOTH_SIM_SIMULATE_CLI_H_
@@ -12,8 +13,13 @@
 namespace nonsmooth_sim::simulate {
 
 struct RunConfig {
-  TippeTopParameters parameters;     ///< friction set, μ, R
-  TippeTopInitialConditions initial; ///< θ0, spin
+  TippeTopParameters parameters;     ///< friction set, μ, R (with --urdf: overrides if given)
+  TippeTopInitialConditions initial; ///< θ0, spin (the built-in Tippe-Top only)
+  std::string urdf_path;             ///< empty: the built-in Tippe-Top (tippe_top.h)
+  std::string initial_path;          ///< YAML initial state of a URDF scene; empty: URDF pose
+  bool friction_set_given = false;   ///< --friction-set was given (a URDF's own sets otherwise)
+  bool mu_given = false;             ///< --mu was given
+  bool contact_radius_given = false; ///< --contact-radius was given
   SimulatorOptions options;          ///< Δt, solver, gyroscopic scheme
   double duration = 8.0;             ///< [s], > 0
   std::string csv_path;              ///< empty: no CSV

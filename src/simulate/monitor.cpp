@@ -1,6 +1,8 @@
 // Per-step monitors and the decimated CSV of `simulate`.
 #include "monitor.h"
 
+#include "nonsmooth_sim/core/tippe_top.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -34,11 +36,14 @@ double VerticalSpin(const BodyState& state) {
 }
 
 RunMonitor::RunMonitor(const RunConfig& config, const Simulator& simulator)
-    : time_step_(simulator.options().time_step) {
+    : tippe_top_(config.urdf_path.empty()), time_step_(simulator.options().time_step) {
   summary_.config = config;
+  summary_.tippe_top = tippe_top_;
   const BodyState& s = simulator.state()[0];
   summary_.energy_initial = simulator.Energy();
-  summary_.jellett_initial = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  if (tippe_top_) {
+    summary_.jellett_initial = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  }
   summary_.vertical_spin_initial = VerticalSpin(s);
   min_cos_theta_ = std::cos(Inclination(s));
   summary_.min_gap = std::numeric_limits<double>::infinity();
@@ -68,16 +73,21 @@ void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatis
   if (cos_theta < std::cos(kThetaInverted)) SetOnce(&summary_.t_theta_above_2_9, t);
   min_cos_theta_ = std::min(min_cos_theta_, cos_theta);
 
-  // contact phases
-  const bool big = contacts[kBigSphere].closed;
-  const bool peg = contacts[kPegSphere].closed;
-  if (peg) SetOnce(&summary_.t_peg_touchdown, t);
-  if (peg && !big) {
-    SetOnce(&summary_.t_big_sphere_liftoff, t);
-    ++peg_only_steps_;
+  // contact phases of the Tippe-Top
+  if (tippe_top_) {
+    const bool big = simulator.InContact(kBigSphere);
+    const bool peg = simulator.InContact(kPegSphere);
+    if (peg) SetOnce(&summary_.t_peg_touchdown, t);
+    if (peg && !big) {
+      SetOnce(&summary_.t_big_sphere_liftoff, t);
+      ++peg_only_steps_;
+    }
+    if (big && summary_.t_theta_above_2_9) SetOnce(&summary_.t_fall_back, t);
   }
-  if (big && summary_.t_theta_above_2_9) SetOnce(&summary_.t_fall_back, t);
   for (const ContactState& c : contacts) summary_.min_gap = std::min(summary_.min_gap, c.gap);
+  summary_.max_closed_contacts = std::max(summary_.max_closed_contacts, stats.closed_contacts);
+  summary_.max_islands = std::max(summary_.max_islands, stats.islands);
+  summary_.max_penetration = std::max(summary_.max_penetration, stats.max_penetration);
 
   // solver
   total_iterations_ += stats.solver.iterations;
@@ -108,8 +118,18 @@ RunSummary RunMonitor::Finish(const Simulator& simulator) {
   summary_.theta_max = std::acos(std::clamp(min_cos_theta_, -1.0, 1.0));
   summary_.z_final = s.position.z();
   summary_.energy_final = simulator.Energy();
-  summary_.jellett_final = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  if (tippe_top_) {
+    summary_.jellett_final = JellettIntegral(simulator.scene(), simulator.state(), kBigSphere);
+  }
   summary_.vertical_spin_final = VerticalSpin(s);
+  for (std::size_t b = 0; b < simulator.scene().bodies.size(); ++b) {
+    const RigidBody& body = simulator.scene().bodies[b];
+    const BodyState& state = simulator.state()[b];
+    summary_.body_names.push_back(body.name);
+    summary_.final_link_position.push_back(state.position -
+                                           state.orientation * body.com_in_link);
+    summary_.final_state.push_back(state);
+  }
   summary_.time_on_peg_s = static_cast<double>(peg_only_steps_) * time_step_;
   summary_.mean_iterations =
       summary_.steps > 0 ? static_cast<double>(total_iterations_) / summary_.steps : 0.0;
@@ -120,9 +140,12 @@ RunSummary RunMonitor::Finish(const Simulator& simulator) {
 CsvRecorder::CsvRecorder(const Simulator& simulator, long expected_rows) {
   columns_ = {"t",  "x_s",   "y_s",    "z_s",     "qw",           "qx",
               "qy", "qz",    "theta",  "energy",  "jellett",      "vertical_spin"};
-  for (const Sphere& sphere : simulator.scene().spheres) {
+  const std::vector<Collider>& colliders = simulator.scene().colliders;
+  for (std::size_t i = 0; i < colliders.size(); ++i) {
+    if (colliders[i].body != 0 || colliders[i].shape.type != ShapeType::kSphere) continue;
+    spheres_.push_back(static_cast<int>(i));
     for (const char* field : {"_closed", "_lambda_n", "_lambda_t1", "_lambda_t2", "_lambda_tau"}) {
-      columns_.push_back(sphere.name + field);
+      columns_.push_back(colliders[i].name + field);
     }
   }
   columns_.push_back("iterations");
@@ -145,29 +168,78 @@ void CsvRecorder::Record(double time, const Simulator& simulator, const StepStat
                         JellettIntegral(simulator.scene(), simulator.state(), kBigSphere),
                         VerticalSpin(s)};
   values_.insert(values_.end(), std::begin(row), std::end(row));
-  for (const ContactState& c : simulator.contacts()) {
-    values_.push_back(c.closed ? 1.0 : 0.0);
-    for (int k = 0; k < 4; ++k) values_.push_back(c.percussion[k]);
+  // per sphere: its (one) ground contact, closed or not
+  for (int sphere : spheres_) {
+    const ContactState* contact = nullptr;
+    for (const ContactState& c : simulator.contacts()) {
+      if (c.collider_a == sphere || c.collider_b == sphere) contact = &c;
+    }
+    values_.push_back(contact != nullptr ? 1.0 : 0.0);
+    for (int k = 0; k < 4; ++k) values_.push_back(contact != nullptr ? contact->percussion[k] : 0.0);
   }
   values_.push_back(stats.solver.iterations);
   values_.push_back(stats.solver.converged ? 1.0 : 0.0);
 }
 
-bool CsvRecorder::Write(const std::string& path) const {
+bool CsvRecorder::Write(const std::string& path) const { return WriteCsv(columns_, values_, path); }
+
+BodyCsvRecorder::BodyCsvRecorder(const Simulator& simulator, long expected_rows) {
+  columns_ = {"t"};
+  for (const RigidBody& body : simulator.scene().bodies) {
+    for (const char* field : {"x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy",
+                              "wz"}) {
+      columns_.push_back(body.name + "/" + field);
+    }
+  }
+  for (const char* field :
+       {"energy", "closed_contacts", "islands", "max_penetration", "iterations", "converged"}) {
+    columns_.push_back(field);
+  }
+  values_.reserve(static_cast<std::size_t>(expected_rows) * columns_.size());
+}
+
+void BodyCsvRecorder::Record(double time, const Simulator& simulator,
+                             const StepStatistics& stats) {
+  values_.push_back(time);
+  for (std::size_t b = 0; b < simulator.scene().bodies.size(); ++b) {
+    const BodyState& s = simulator.state()[b];
+    // the link frame: r_S - A com_in_link; ω in the world
+    const Eigen::Vector3d link = s.position - s.orientation * simulator.scene().bodies[b].com_in_link;
+    const Eigen::Vector3d omega = s.orientation * s.angular_velocity;
+    const double row[] = {link.x(), link.y(), link.z(), s.orientation.x(), s.orientation.y(),
+                          s.orientation.z(), s.orientation.w(), s.linear_velocity.x(),
+                          s.linear_velocity.y(), s.linear_velocity.z(), omega.x(), omega.y(),
+                          omega.z()};
+    values_.insert(values_.end(), std::begin(row), std::end(row));
+  }
+  values_.push_back(simulator.Energy());
+  values_.push_back(stats.closed_contacts);
+  values_.push_back(stats.islands);
+  values_.push_back(stats.max_penetration);
+  values_.push_back(stats.solver.iterations);
+  values_.push_back(stats.solver.converged ? 1.0 : 0.0);
+}
+
+bool BodyCsvRecorder::Write(const std::string& path) const {
+  return WriteCsv(columns_, values_, path);
+}
+
+bool WriteCsv(const std::vector<std::string>& columns, const std::vector<double>& values,
+              const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) return false;
   std::string text;
-  for (std::size_t k = 0; k < columns_.size(); ++k) {
-    text += columns_[k];
-    text += k + 1 < columns_.size() ? ',' : '\n';
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    text += columns[k];
+    text += k + 1 < columns.size() ? ',' : '\n';
   }
   char buffer[32];
-  for (std::size_t k = 0; k < values_.size(); ++k) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
     // 15 significant digits: t = k·Δt prints as 0.003, not 0.0030000000000000001
-    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), values_[k],
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), values[k],
                                       std::chars_format::general, kSignificantDigits);
     text.append(buffer, result.ptr);
-    text += (k + 1) % columns_.size() == 0 ? '\n' : ',';
+    text += (k + 1) % columns.size() == 0 ? '\n' : ',';
   }
   const bool ok = std::fwrite(text.data(), 1, text.size(), file) == text.size();
   return std::fclose(file) == 0 && ok;

@@ -1,5 +1,6 @@
-// What `simulate` observes during a Tippe-Top run: per-step monitors for the JSON summary
-// (threshold times, energy, contact phases) and the decimated CSV rows.
+// What `simulate` observes during a run: per-step monitors for the JSON summary (energy, solver,
+// penetration, gap correction; for the built-in Tippe-Top also threshold times, contact phases
+// and Jellett's integral) and the decimated CSV rows.
 #ifndef NONSMOOTH_SIM_SIMULATE_MONITOR_H_
 #define NONSMOOTH_SIM_SIMULATE_MONITOR_H_
 
@@ -12,12 +13,18 @@
 
 namespace nonsmooth_sim::simulate {
 
-/// Sphere indices of the Tippe-Top scene (tippe_top.h).
-inline constexpr int kBigSphere = 0;
-inline constexpr int kPegSphere = 1;
-
 struct RunSummary {
   RunConfig config;
+  /// The built-in Tippe-Top (its observables below are set); false for a --urdf scene.
+  bool tippe_top = true;
+  int max_closed_contacts = 0;   ///< most closed contacts in one step
+  int max_islands = 0;           ///< most contact problems (islands) in one step
+  double max_penetration = 0.0;  ///< deepest penetration of a closed contact at q_M [m]
+  /// Per body: link name, and the final state (link frame pose, v_S in the world, ω in the link
+  /// axes: the YAML initial-state convention).
+  std::vector<std::string> body_names;
+  std::vector<Eigen::Vector3d> final_link_position;
+  std::vector<BodyState> final_state;
   long steps = 0;
   double wall_time_s = 0.0;         ///< stepping and per-step monitors, no file output [s]
   double cpu_time_s = 0.0;          ///< thread CPU time of the same loop [s]
@@ -42,7 +49,7 @@ struct RunSummary {
   double jellett_final = 0.0;
   double vertical_spin_initial = 0.0;
   double vertical_spin_final = 0.0;
-  double min_gap = 0.0;  ///< smallest gap of any contact at the end of a step [m]
+  double min_gap = 0.0;  ///< smallest gap of a closed contact at the midpoint of a step [m]
   double max_dt_omega = 0.0;
   /// No step reported StepStatistics::explicit_gyroscopic_unsafe.
   bool explicit_gyroscopic_safe = true;
@@ -73,6 +80,7 @@ class RunMonitor {
 
  private:
   RunSummary summary_;
+  bool tippe_top_;
   double time_step_;
   double energy_previous_;
   double min_cos_theta_;
@@ -90,8 +98,27 @@ class CsvRecorder {
 
  private:
   std::vector<std::string> columns_;
+  std::vector<int> spheres_;  // the body's sphere colliders, one column group each
   std::vector<double> values_;
 };
+
+/// The CSV of a URDF scene: t, per body <link>/x y z qx qy qz qw vx vy vz wx wy wz (link frame
+/// position and orientation in the world, v_S and ω in the world), energy, closed_contacts,
+/// islands, max_penetration, iterations, converged.
+class BodyCsvRecorder {
+ public:
+  BodyCsvRecorder(const Simulator& simulator, long expected_rows);
+  void Record(double time, const Simulator& simulator, const StepStatistics& stats);
+  bool Write(const std::string& path) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<double> values_;
+};
+
+/// Writes header and rows (numbers with 15 significant digits); false if it cannot.
+bool WriteCsv(const std::vector<std::string>& columns, const std::vector<double>& values,
+              const std::string& path);
 
 /// Writes the JSON summary; false if the file cannot be written.
 bool WriteSummaryJson(const RunSummary& summary, const std::string& path);

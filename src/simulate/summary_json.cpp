@@ -1,5 +1,6 @@
 // The JSON summary of a `simulate` run (field names are part of the interface: scripts/demo and
 // the README read them).
+#include <Eigen/Core>
 #include <charconv>
 #include <cstdio>
 #include <string>
@@ -41,6 +42,11 @@ class JsonObject {
       text_ += "null";
     }
   }
+  /// A value written as JSON already (an array or object).
+  void AddRaw(const char* key, const std::string& json) {
+    Key(key);
+    text_ += json;
+  }
   std::string Text() const { return text_ + "\n}\n"; }
 
  private:
@@ -51,6 +57,35 @@ class JsonObject {
   }
   std::string text_;
 };
+
+std::string Number(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
+                                    std::chars_format::general, kSignificantDigits);
+  return std::string(buffer, result.ptr);
+}
+
+template <typename Vector>
+std::string Array(const Vector& v) {
+  std::string out = "[";
+  for (Eigen::Index k = 0; k < v.size(); ++k) out += (k > 0 ? ", " : "") + Number(v[k]);
+  return out + "]";
+}
+
+// {"<link>": {"position": [...], "orientation": [qx, qy, qz, qw], "linear_velocity": [...],
+// "angular_velocity": [...]}, ...}: the YAML initial-state convention, so a run can continue
+std::string Bodies(const RunSummary& s) {
+  std::string out = "{";
+  for (std::size_t b = 0; b < s.body_names.size(); ++b) {
+    const BodyState& state = s.final_state[b];
+    out += (b > 0 ? ",\n    \"" : "\n    \"") + s.body_names[b] + "\": {\"position\": " +
+           Array(s.final_link_position[b]) + ", \"orientation\": " +
+           Array(state.orientation.coeffs()) + ", \"linear_velocity\": " +
+           Array(state.linear_velocity) + ", \"angular_velocity\": " +
+           Array(state.angular_velocity) + "}";
+  }
+  return out + "\n  }";
+}
 
 }  // namespace
 
@@ -72,8 +107,8 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("energy_initial", s.energy_initial);
   json.Add("energy_final", s.energy_final);
   json.Add("max_energy_increase", s.max_energy_increase);
-  json.Add("jellett_initial", s.jellett_initial);
-  json.Add("jellett_final", s.jellett_final);
+  json.Add("jellett_initial", s.tippe_top ? std::optional<double>(s.jellett_initial) : std::nullopt);
+  json.Add("jellett_final", s.tippe_top ? std::optional<double>(s.jellett_final) : std::nullopt);
   json.Add("mean_iterations", s.mean_iterations);
   json.Add("max_iterations", s.max_iterations);
   json.Add("unconverged_steps", s.unconverged_steps);
@@ -111,6 +146,12 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("gap_correction_steps", s.gap_correction_steps);
   json.Add("state_finite", s.state_finite);
   json.Add("t_non_finite", s.t_non_finite);
+  // every scene: what it contains and how the contacts went, and where each body ended
+  json.Add("scene", c.urdf_path.empty() ? std::string("tippe_top (built in)") : c.urdf_path);
+  json.Add("max_closed_contacts", s.max_closed_contacts);
+  json.Add("max_islands", s.max_islands);
+  json.Add("max_penetration", s.max_penetration);
+  json.AddRaw("bodies", Bodies(s));
 
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) return false;

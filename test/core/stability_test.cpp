@@ -28,14 +28,18 @@
 
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "scene_builders.h"
 
 namespace nonsmooth_sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kBig = 0;  // sphere indices of MakeTippeTopScene
-constexpr int kPeg = 1;
+constexpr int kBig = kBigSphere;  // collider indices of MakeTippeTopScene
+constexpr int kPeg = kPegSphere;
+
+using test::AddGround;
+using test::SphereCollider;
 
 // A percussion may leave its set by the round-off of the prox formulas only (relative to μΛ_N).
 constexpr double kSetRoundOff = 1e-9;
@@ -63,7 +67,7 @@ struct RunReport {
   long dishonest_steps = 0;  // converged ≠ (residual ≤ 1), or converged with γ_N < -tolerance
   bool finite = true;
   double max_quaternion_error = 0.0;      // max ||p| - 1|
-  double min_gap = kInf;                  // smallest gap of any sphere after a step [m]
+  double min_gap = kInf;  // smallest gap of any collider above the ground after a step [m]
   // energies net of the gap correction's lifts, i.e. of the paper's scheme
   double max_step_energy_gain = -kInf;    // max E(t+Δt) - E(t) - ΔE_lift(t+Δt) [J]
   double max_energy_above_start = -kInf;  // max E(t) - E(0) - Σ ΔE_lift [J]
@@ -144,11 +148,12 @@ RunReport RunChecked(Simulator* sim, long steps, double normal_tolerance = 1e-6,
     r.theta_max = std::max(r.theta_max, Inclination(sim->state()[0]));
 
     bool honest = stats.solver.converged == (stats.solver.residual <= 1.0);
+    // the gap of every collider at the end of the step (q_E), closed or open
+    r.min_gap = std::min(r.min_gap, test::MinGroundGap(sim->scene(), sim->state()));
+    // contacts() holds the closed contacts (12) of the step, each with its pair's law
     const auto& contacts = sim->contacts();
     for (std::size_t i = 0; i < contacts.size(); ++i) {
-      r.min_gap = std::min(r.min_gap, contacts[i].gap);
-      if (!contacts[i].closed) continue;
-      const ContactLaw& law = sim->scene().spheres[i].law;
+      const ContactLaw& law = contacts[i].law;
       r.max_set_violation =
           std::max(r.max_set_violation, SetViolation(law, contacts[i].percussion));
       if (stats.solver.converged && law.restitution == 0.0) {
@@ -204,6 +209,8 @@ Scene TippeTop(const TopSetup& setup) {
   TippeTopInitialConditions initial;
   initial.spin = setup.spin;
   initial.inclination = setup.inclination;
+  // a contact's μ is min(μ_top, μ_ground) (CombineLaws); GroundLaw() is neutral, so the top's μ
+  // decides however large (the huge-μ test checks the contact's μ)
   return MakeTippeTopScene(parameters, initial);
 }
 
@@ -256,15 +263,22 @@ TEST(Validation, BadParametersAreRejectedWithNameAndRangeBeforeTheRun) {
 
   for (const double mu : {-0.3, nan}) {
     Scene s = top;
-    s.spheres[kPeg].law.mu = mu;
-    ExpectRejected(construct(s, SimulatorOptions{}), {"spheres[1]", "law.mu", ">= 0"});
+    s.colliders[kPeg].law.mu = mu;
+    ExpectRejected(construct(s, SimulatorOptions{}),
+                   {"colliders[1] (peg_sphere)", "law.mu", ">= 0"});
   }
   Scene s = top;
-  s.spheres[kBig].law.rbar = -1e-4;
-  ExpectRejected(construct(s, SimulatorOptions{}), {"law.rbar", ">= 0"});
+  s.colliders[kBig].law.rbar = -1e-4;
+  ExpectRejected(construct(s, SimulatorOptions{}),
+                 {"colliders[0] (big_sphere)", "law.rbar", ">= 0"});
   s = top;
-  s.spheres[kBig].law.restitution = 1.5;
-  ExpectRejected(construct(s, SimulatorOptions{}), {"law.restitution", "[0, 1]"});
+  s.colliders[kBig].law.restitution = 1.5;
+  ExpectRejected(construct(s, SimulatorOptions{}),
+                 {"colliders[0] (big_sphere)", "law.restitution", "[0, 1]"});
+  s = top;
+  s.colliders[kBig].shape.radius = nan;
+  ExpectRejected(construct(s, SimulatorOptions{}),
+                 {"colliders[0] (big_sphere)", "radius", "> 0"});
   s = top;
   s.initial_state[0].position.z() = nan;
   ExpectRejected(construct(s, SimulatorOptions{}), {"position", "finite"});
@@ -276,11 +290,15 @@ TEST(Validation, BadParametersAreRejectedWithNameAndRangeBeforeTheRun) {
   o = SimulatorOptions{};
   o.time_step = -1e-4;
   ExpectRejected([&] { sim.SetOptions(o); }, {"time_step"});
-  ContactLaw law = sim.scene().spheres[kBig].law;
+  ContactLaw law = sim.scene().colliders[kBig].law;
   law.mu = -1.0;
-  ExpectRejected([&] { sim.SetContactLaw(kBig, law); }, {"law.mu", ">= 0"});
+  // "law of collider big_sphere.mu = -1: must be finite, >= 0"
+  ExpectRejected([&] { sim.SetContactLaw(kBig, law); }, {"big_sphere", "mu", ">= 0"});
+  ExpectRejected([&] { sim.SetFrictionSet(FrictionSet::kExact, "no_such_collider"); },
+                 {"no_such_collider"});
   EXPECT_EQ(sim.options().time_step, 1e-4);
-  EXPECT_EQ(sim.scene().spheres[kBig].law.mu, 0.3);
+  EXPECT_EQ(sim.scene().colliders[kBig].law.mu, 0.3);
+  EXPECT_EQ(sim.scene().colliders[kBig].law.friction_set, FrictionSet::kSphere);
   EXPECT_EQ(sim.state()[0].position, before.position);
   sim.Step();  // and it still runs
   EXPECT_TRUE(StateIsFinite(sim.state()));
@@ -348,6 +366,7 @@ TEST(FrictionCoefficient, TinyMuIsAlmostFrictionless) {
 struct StickReport {
   RunReport run;
   double stick_time = -1.0;  // [s]
+  double contact_mu = -1.0;  // μ of the big sphere's contact (its pair's law)
 };
 StickReport RunUntilStuck(const TopSetup& setup, double duration) {
   Simulator sim(TippeTop(setup), Options());
@@ -355,11 +374,13 @@ StickReport RunUntilStuck(const TopSetup& setup, double duration) {
   constexpr double kSlipSpeed = 1e-6;   // [m/s]
   constexpr double kDrillSpeed = 1e-6;  // [rad/s]
   report.run = RunChecked(&sim, Steps(duration, 1e-4), 1e-6, [&](long k, const StepStatistics&) {
-    const ContactState& c = sim.contacts()[kBig];
-    const bool stuck = c.closed && c.relative_velocity.segment<2>(1).norm() < kSlipSpeed &&
-                       (ContactDimension(sim.scene().spheres[kBig].law) < 4 ||
-                        std::abs(c.relative_velocity[3]) < kDrillSpeed);
-    if (!stuck && c.closed) report.stick_time = -1.0;
+    const ContactState* c = sim.FindContact(kBig);
+    const bool closed = c != nullptr;
+    if (closed) report.contact_mu = c->law.mu;
+    const bool stuck = closed && c->relative_velocity.segment<2>(1).norm() < kSlipSpeed &&
+                       (ContactDimension(sim.scene().colliders[kBig].law) < 4 ||
+                        std::abs(c->relative_velocity[3]) < kDrillSpeed);
+    if (!stuck && closed) report.stick_time = -1.0;
     if (stuck && report.stick_time < 0.0) report.stick_time = k * 1e-4;
   });
   return report;
@@ -380,6 +401,7 @@ TEST(FrictionCoefficient, HugeMuSticksAlmostAtOnceAndDoesNotInvert) {
     const StickReport s = RunUntilStuck(setup, 3.0);
     const std::string what = "mu = " + std::to_string(mu);
     ExpectSane(s.run, -2e-5, what);
+    EXPECT_EQ(s.contact_mu, mu) << what;
     ASSERT_GT(s.stick_time, 0.0) << what;
     EXPECT_LT(s.stick_time, mu > 10.0 ? 0.02 : 2.0) << what;
     EXPECT_LT(s.run.theta_max, 0.8) << what;
@@ -425,7 +447,7 @@ TEST(ContactRadius, ZeroRadiusHasNoDrillingComponentWithAnySet) {
     TopSetup setup = coulomb;
     setup.set = set;
     const std::string what(FrictionSetName(set));
-    EXPECT_EQ(ContactDimension(TippeTop(setup).spheres[kBig].law), 3) << what;
+    EXPECT_EQ(ContactDimension(TippeTop(setup).colliders[kBig].law), 3) << what;
     const Comparison c = Compare(setup, coulomb, Steps(1.0, 1e-4));
     ExpectSane(c.run, -1e-6, what);  // measured -1.6e-7 m
     EXPECT_EQ(c.max_drilling, 0.0) << what;
@@ -492,13 +514,12 @@ Scene BallScene(const Eigen::Vector3d& gravity, FrictionSet set) {
   ball.mass = 0.2;
   ball.inertia = Eigen::Matrix3d::Identity() * (0.4 * 0.2 * 0.05 * 0.05);
   scene.bodies = {ball};
-  Sphere sphere;
-  sphere.name = "ball";
-  sphere.radius = 0.05;
-  sphere.law.mu = 0.3;
-  sphere.law.rbar = AverageFrictionRadius(5e-3);
-  sphere.law.friction_set = set;
-  scene.spheres = {sphere};
+  ContactLaw law;
+  law.mu = 0.3;
+  law.rbar = AverageFrictionRadius(5e-3);
+  law.friction_set = set;
+  scene.colliders = {SphereCollider("ball", 0, Eigen::Vector3d::Zero(), 0.05, law)};
+  AddGround(&scene);
   scene.gravity = gravity;
   BodyState state;
   state.position = Eigen::Vector3d(0.0, 0.0, 0.05);  // touching: gap exactly 0
@@ -519,7 +540,9 @@ TEST(NormalForceToZero, TouchingWithoutLoadCarriesNoForce) {
     double max_percussion = 0.0;
     const RunReport r = RunChecked(&sim, 1000, 1e-12, [&](long, const StepStatistics& stats) {
       EXPECT_EQ(stats.closed_contacts, 1);
-      max_percussion = std::max(max_percussion, sim.contacts()[0].percussion.cwiseAbs().maxCoeff());
+      const ContactState* c = sim.FindContact(0);
+      ASSERT_NE(c, nullptr);
+      max_percussion = std::max(max_percussion, c->percussion.cwiseAbs().maxCoeff());
     });
     const std::string what(FrictionSetName(set));
     ExpectSane(r, -1e-15, what);
@@ -543,9 +566,8 @@ TEST(NormalForceToZero, BigSphereLiftsOffCleanly) {
   Simulator sim(TippeTop({}), Options());
   double last_closed = -1.0, first_peg = -1.0;
   const RunReport r = RunChecked(&sim, Steps(1.7, 1e-4), 1e-5, [&](long k, const StepStatistics&) {
-    const auto& c = sim.contacts();
-    if (c[kPeg].closed && first_peg < 0.0) first_peg = k * 1e-4;
-    if (c[kBig].closed) last_closed = k * 1e-4;
+    if (sim.InContact(kPeg) && first_peg < 0.0) first_peg = k * 1e-4;
+    if (sim.InContact(kBig)) last_closed = k * 1e-4;
   });
   ExpectSane(r, -1e-4, "lift-off");
   EXPECT_EQ(r.unconverged_steps, 0);
@@ -553,7 +575,7 @@ TEST(NormalForceToZero, BigSphereLiftsOffCleanly) {
   ASSERT_GT(first_peg, 0.0);
   EXPECT_GE(last_closed, first_peg);
   EXPECT_LT(last_closed, 1.6);
-  EXPECT_GT(sim.contacts()[kBig].gap, 1e-3);
+  EXPECT_GT(test::GroundGap(sim.scene(), sim.state(), kBig), 1e-3);
 }
 
 // A 1 kg disc resting on `feet` spheres (radius 1 cm) on a circle of radius 0.1 m, 2 cm below its
@@ -566,17 +588,17 @@ Scene DiscOnFeet(int feet, FrictionSet set) {
   disc.mass = 1.0;
   disc.inertia = Eigen::Vector3d(2.5e-3, 2.5e-3, 5e-3).asDiagonal();
   scene.bodies = {disc};
+  ContactLaw law;
+  law.mu = 0.3;
+  law.rbar = AverageFrictionRadius(2e-3);
+  law.friction_set = set;
   for (int i = 0; i < feet; ++i) {
     const double angle = 2.0 * kPi * i / feet;
-    Sphere foot;
-    foot.name = "foot" + std::to_string(i);
-    foot.center = Eigen::Vector3d(0.1 * std::cos(angle), 0.1 * std::sin(angle), -0.02);
-    foot.radius = 0.01;
-    foot.law.mu = 0.3;
-    foot.law.rbar = AverageFrictionRadius(2e-3);
-    foot.law.friction_set = set;
-    scene.spheres.push_back(foot);
+    scene.colliders.push_back(SphereCollider(
+        "foot" + std::to_string(i), 0,
+        Eigen::Vector3d(0.1 * std::cos(angle), 0.1 * std::sin(angle), -0.02), 0.01, law));
   }
+  AddGround(&scene);
   BodyState state;
   state.position = Eigen::Vector3d(0.0, 0.0, 0.03);  // every foot touches
   scene.initial_state = {state};
@@ -649,8 +671,9 @@ TEST(Spin, WithoutSpinTheTopRocksOnItsBigSphereWithoutGainingHeight) {
   double late_theta_max = 0.0, max_slip = 0.0;
   const RunReport r = RunChecked(&sim, Steps(3.0, 1e-4), 1e-6, [&](long k, const StepStatistics&) {
     if (k > 20000) late_theta_max = std::max(late_theta_max, Inclination(sim.state()[0]));
-    if (k > 10 && sim.contacts()[kBig].closed) {
-      max_slip = std::max(max_slip, sim.contacts()[kBig].relative_velocity.segment<2>(1).norm());
+    const ContactState* big = sim.FindContact(kBig);
+    if (k > 10 && big != nullptr) {
+      max_slip = std::max(max_slip, big->relative_velocity.segment<2>(1).norm());
     }
   });
   ExpectSane(r, -1e-6, "spin 0");
@@ -857,7 +880,8 @@ TEST(GapCorrection, ImpactDepthIsLiftedAndReported) {
       EXPECT_GT(max_lift, 1e-5) << what;
       // one body: ΔE = m g Δz for every lift
       EXPECT_NEAR(energy_total, 0.2 * 9.81 * lift_total, 1e-12 * energy_total) << what;
-      EXPECT_NEAR(sim.contacts()[0].gap, -kGapCorrectionSlop, kLiftRoundOff) << what;
+      EXPECT_NEAR(test::GroundGap(sim.scene(), sim.state(), 0), -kGapCorrectionSlop, kLiftRoundOff)
+          << what;
     } else {
       EXPECT_LT(r.min_gap, -1e-5) << what;
       EXPECT_EQ(lift_total, 0.0) << what;
@@ -971,7 +995,7 @@ struct Bounces {
 };
 Bounces DropBall(double restitution, double duration) {
   Scene scene = BallScene(Eigen::Vector3d(0.0, 0.0, -9.81), FrictionSet::kSphere);
-  scene.spheres[0].law.restitution = restitution;
+  scene.colliders[0].law.restitution = restitution;
   scene.initial_state[0].position.z() = 1.05;
   SimulatorOptions options = Options(1e-4);
   options.solver.tolerance_rel = 1e-12;
@@ -1059,13 +1083,12 @@ Scene NeedleBall(FrictionSet set, double speed) {
   body.mass = 1.0;
   body.inertia = Eigen::Vector3d(1e-2, 1e-2, 1e-8).asDiagonal();
   scene.bodies = {body};
-  Sphere sphere;
-  sphere.name = "foot";
-  sphere.radius = 0.1;
-  sphere.law.mu = 0.5;
-  sphere.law.rbar = AverageFrictionRadius(0.02);
-  sphere.law.friction_set = set;
-  scene.spheres = {sphere};
+  ContactLaw law;
+  law.mu = 0.5;
+  law.rbar = AverageFrictionRadius(0.02);
+  law.friction_set = set;
+  scene.colliders = {SphereCollider("foot", 0, Eigen::Vector3d::Zero(), 0.1, law)};
+  AddGround(&scene);
   BodyState state;
   state.position = Eigen::Vector3d(0.0, 0.0, 0.1);
   state.linear_velocity = Eigen::Vector3d(speed, 0.0, 0.0);
@@ -1107,7 +1130,9 @@ TEST(BadScaling, ModifiedIterationConvergesWhereJacobiStalls) {
         EXPECT_EQ(r.unconverged_steps, 0) << what;
         EXPECT_LE(iterations, 2 * 200) << what;
         EXPECT_GT(r.min_gap, -1e-12) << what;
-        EXPECT_NEAR(sim.contacts()[0].percussion[0], 9.81e-3, 1e-12) << what;
+        const ContactState* foot = sim.FindContact(0);
+        ASSERT_NE(foot, nullptr) << what;
+        EXPECT_NEAR(foot->percussion[0], 9.81e-3, 1e-12) << what;
       }
     }
   }

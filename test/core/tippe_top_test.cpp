@@ -12,13 +12,14 @@
 
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "scene_builders.h"
 
 namespace nonsmooth_sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kBig = 0;  // sphere indices of MakeTippeTopScene
-constexpr int kPeg = 1;
+constexpr int kBig = kBigSphere;  // collider indices of MakeTippeTopScene
+constexpr int kPeg = kPegSphere;
 
 Scene TippeTop(FrictionSet set, double contact_radius = 5e-4) {
   TippeTopParameters parameters;
@@ -40,7 +41,31 @@ TEST(TippeTopScene, MatchesTheReferenceNumbers) {
   EXPECT_NEAR(Inclination(scene.initial_state[0]), 0.1, 1e-15);
   // the big sphere just touches: z_S0 = R1 - a1 cos θ0
   EXPECT_NEAR(scene.initial_state[0].position.z(), 0.015 - 0.003 * std::cos(0.1), 1e-15);
-  EXPECT_NEAR(scene.spheres[kBig].law.rbar, 3.0 * kPi * 5e-4 / 16.0, 1e-18);
+  EXPECT_NEAR(scene.colliders[kBig].law.rbar, 3.0 * kPi * 5e-4 / 16.0, 1e-18);
+  // the colliders: two spheres on the top, the ground plane last with a law that lets the top's
+  // decide (CombineLaws: μ = min, R̄ = max, ε = max)
+  ASSERT_EQ(scene.colliders.size(), 3u);
+  EXPECT_EQ(scene.colliders[kBig].name, "big_sphere");
+  EXPECT_EQ(scene.colliders[kBig].shape.type, ShapeType::kSphere);
+  EXPECT_EQ(scene.colliders[kBig].shape.radius, 0.015);
+  EXPECT_EQ(scene.colliders[kBig].pose.translation(), Eigen::Vector3d(0.0, 0.0, 0.003));
+  EXPECT_EQ(scene.colliders[kPeg].name, "peg_sphere");
+  EXPECT_EQ(scene.colliders[kPeg].shape.radius, 0.005);
+  EXPECT_EQ(scene.colliders[kPeg].pose.translation(), Eigen::Vector3d(0.0, 0.0, 0.016));
+  EXPECT_EQ(scene.colliders[kTippeTopGround].name, "ground");
+  EXPECT_EQ(scene.colliders[kTippeTopGround].body, kWorld);
+  EXPECT_EQ(scene.colliders[kTippeTopGround].shape.type, ShapeType::kPlane);
+  for (const int sphere : {kBig, kPeg}) {
+    const ContactLaw law = CombineLaws(scene.colliders[static_cast<std::size_t>(sphere)],
+                                       scene.colliders[kTippeTopGround]);
+    EXPECT_EQ(law.mu, 0.3);
+    EXPECT_EQ(law.rbar, scene.colliders[kBig].law.rbar);
+    EXPECT_EQ(law.restitution, 0.0);
+    EXPECT_EQ(law.friction_set, FrictionSet::kSphere);
+  }
+  // the big sphere just touches the ground, the peg is above it
+  EXPECT_NEAR(test::GroundGap(scene, scene.initial_state, kBig), 0.0, 1e-17);
+  EXPECT_GT(test::GroundGap(scene, scene.initial_state, kPeg), 0.02);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -82,14 +107,14 @@ Inversion RunInversion(FrictionSet set, double limit, double peg_window) {
           std::max(result.worst_peg_height_error, std::abs(sim.state()[0].position.z() - 0.021));
     }
     if (result.t_above_2_9) {
-      const auto& c = sim.contacts();
       result.big_sphere_open_after_inversion =
-          result.big_sphere_open_after_inversion && !c[kBig].closed;
-      if (!c[kPeg].closed) {
+          result.big_sphere_open_after_inversion && !sim.InContact(kBig);
+      const bool peg_open = !sim.InContact(kPeg);
+      if (peg_open) {
         result.peg_open_twice = result.peg_open_twice || peg_was_open;
         ++result.peg_open_steps;
       }
-      peg_was_open = !c[kPeg].closed;
+      peg_was_open = peg_open;
       if (t > *result.t_above_2_9 + peg_window) break;
     }
   }
@@ -135,12 +160,12 @@ TEST(TippeTop, FullRunNeverGainsEnergyAndFallsBackOffItsPeg) {
     lifted += sim.Step().gap_correction_energy;
     const double t = k * 1e-4;
     max_above = std::max(max_above, sim.Energy() - e0 - lifted);
-    const bool peg_only = sim.contacts()[kPeg].closed && !sim.contacts()[kBig].closed;
+    const bool peg_only = sim.InContact(kPeg) && !sim.InContact(kBig);
     if (!inverted && Inclination(sim.state()[0]) > 2.9) inverted = t;
     if (inverted && !fell_back) {
       if (peg_only && !spin_on_peg_start) spin_on_peg_start = VerticalSpin(sim);
       if (peg_only) spin_on_peg_end = VerticalSpin(sim);
-      if (sim.contacts()[kBig].closed) fell_back = t;
+      if (sim.InContact(kBig)) fell_back = t;
     }
   }
   EXPECT_LE(max_above, 0.0);
@@ -196,7 +221,7 @@ double JellettDrift(FrictionSet set, double contact_radius, double dt, double du
   const long steps = std::lround(duration / dt);
   for (long k = 0; k < steps; ++k) {
     sim.Step();
-    if (sim.contacts()[kPeg].closed) break;
+    if (sim.InContact(kPeg)) break;
     drift = std::max(drift,
                      std::abs(JellettIntegral(sim.scene(), sim.state(), kBig) - j0) / std::abs(j0));
   }
@@ -234,10 +259,10 @@ double SpinDecayOnPeg(FrictionSet set, double duration) {
   bool big_touched = false;
   for (long k = 0; k < steps; ++k) {
     sim.Step();
-    big_touched = big_touched || sim.contacts()[kBig].closed;
+    big_touched = big_touched || sim.InContact(kBig);
   }
   // on the peg alone throughout (the first step may see the peg's exact-zero gap as open)
-  EXPECT_TRUE(sim.contacts()[kPeg].closed);
+  EXPECT_TRUE(sim.InContact(kPeg));
   EXPECT_FALSE(big_touched);
   return (spin0 - VerticalSpin(sim)) / duration;
 }
@@ -293,7 +318,8 @@ TEST(EllipsoidAndSphere, GiveTheSameTrajectory) {
 // No penetration drift at rest
 
 TEST(RestingTop, DoesNotSink) {
-  // upright on its big sphere, at rest, 10 s: measured smallest gap 0 m
+  // upright on its big sphere, at rest, 10 s: measured smallest gap (at the end of each step)
+  // 0 m
   TippeTopInitialConditions initial;
   initial.inclination = 0.0;
   initial.spin = 0.0;
@@ -301,12 +327,14 @@ TEST(RestingTop, DoesNotSink) {
   double lowest = INFINITY;
   for (long k = 0; k < 100000; ++k) {
     sim.Step();
-    lowest = std::min(lowest, sim.contacts()[kBig].gap);
-    ASSERT_TRUE(sim.contacts()[kBig].closed);
+    lowest = std::min(lowest, test::GroundGap(sim.scene(), sim.state(), kBig));
+    ASSERT_TRUE(sim.InContact(kBig)) << "step " << k;
   }
   EXPECT_GT(lowest, -1e-9);
   // it carries the weight: Λ_N = m g Δt
-  EXPECT_NEAR(sim.contacts()[kBig].percussion[0], 6e-3 * 9.81 * 1e-4, 1e-12);
+  const ContactState* big = sim.FindContact(kBig);
+  ASSERT_NE(big, nullptr);
+  EXPECT_NEAR(big->percussion[0], 6e-3 * 9.81 * 1e-4, 1e-12);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The malformed URDF fixtures (test/node/fixtures) and what their one error line must say.
-// Shared by the converter test (SceneFromUrdf throws) and the rostest that starts the node with
-// each of them (exit code 1, the same line on stderr).
+// The malformed URDF fixtures (test/node/fixtures) and what their one error line must say: the
+// rostest starts the node with each of them (exit code 1, the scene loader's UrdfError on stderr;
+// its wording is src/scene_io/*.cpp's).
 #ifndef NONSMOOTH_SIM_TEST_NODE_BAD_URDF_FIXTURES_H_
 #define NONSMOOTH_SIM_TEST_NODE_BAD_URDF_FIXTURES_H_
 
@@ -18,7 +18,9 @@ inline const std::vector<BadUrdf>& BadUrdfFixtures() {
   static const std::vector<BadUrdf> fixtures = {
       {"not_xml.urdf", {"not well-formed XML", "Line number=3", "inertial"}},
       {"not_robot.urdf", {"root element is <model>", "expected <robot>"}},
-      {"no_inertial.urdf", {"link \"tippe_top\"", "no <inertial>"}},
+      {"no_inertial.urdf", {"link \"tippe_top\"", "no <inertial>",
+                            "a free body with collisions needs mass and inertia"}},
+      {"no_free_body.urdf", {"no free body", "root link \"tippe_top\" has no <inertial>"}},
       {"negative_mass.urdf", {"link \"tippe_top\" > inertial > mass", "must be > 0"}},
       {"non_pd_inertia.urdf", {"link \"tippe_top\" > inertial > inertia",
                                "not positive definite"}},

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """A bag recorded by the launch file (through scripts/record) holds the five recorded topics, with
 message counts equal to the simulated duration times each topic's publish rate, at the sim
-times the rates promise, and a /clock that only advances and is never 0.
+times the rates promise, and a /clock that only advances and is never 0. ~contacts lists closed
+contacts only, named "<first collision>/<second collision>" (the spinning top starts on
+"big_sphere/ground"; an open peg is absent).
 
 Run by ctest: test/node/bag_record_test.py --build-dir BUILD
 """
@@ -71,6 +73,25 @@ class RecordedBag(unittest.TestCase):
             self.assertEqual(steps, [period * (k + 1) for k in range(len(steps))], topic)
         stamps = [step_of(m.transforms[0].header.stamp.to_sec()) for m in self.messages("/tf")]
         self.assertEqual(stamps, [10 * (k + 1) for k in range(len(stamps))])
+
+    def test_contacts_are_the_closed_ones_by_name(self):
+        messages = self.messages("/nonsmooth_sim/contacts")
+        self.assertTrue(messages)
+        listed = 0
+        for m in messages:
+            for c in m.contacts:
+                self.assertTrue(c.closed, (m.sim_time, c.name))
+                self.assertIn(c.name, (c.collision + "/" + c.other_collision,
+                                       c.other_collision + "/" + c.collision), m.sim_time)
+                self.assertEqual(c.body, "tippe_top")
+                if c.other_collision == "ground":
+                    self.assertEqual(c.other_body, "")
+                self.assertIn(c.frame, ("", c.collision + "_contact"), (m.sim_time, c.name))
+                listed += 1
+        self.assertGreater(listed, 0)
+        # the launch file's start: spinning on the big sphere, the peg in the air
+        self.assertEqual([c.name for c in messages[0].contacts], ["big_sphere/ground"])
+        self.assertEqual(messages[0].contacts[0].other_collision, "ground")
 
     def test_clock_only_advances_and_is_never_zero(self):
         clock = [m.clock for m in self.messages("/clock")]

@@ -1,8 +1,13 @@
 // Core -> messages: stamps never 0, forces are percussions / Δt in the contact frame, the link
 // pose accounts for the centre-of-mass offset, state fields agree with the core's functions.
+// ~contacts lists the closed contacts only, named "<first collision>/<second collision>"; a slot's
+// wrench is the total contact wrench on its collider in its slot frame.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/node/conversions.h"
@@ -13,9 +18,48 @@ namespace {
 Eigen::Vector3d ToEigen(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
 Eigen::Vector3d ToEigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
 
+Eigen::Quaterniond ToEigen(const geometry_msgs::Quaternion& q) { return {q.w, q.x, q.y, q.z}; }
+
 // the Tippe-Top upright at rest on its big sphere, after `steps` steps
 Simulator RestingTop(int steps) {
   Simulator sim(MakeTippeTopScene({}, {0.0, 0.0}), SimulatorOptions{});
+  for (int k = 0; k < steps; ++k) sim.Step();
+  return sim;
+}
+
+// Whether a contact of collision `name` (on either side) is listed.
+bool Lists(const ContactInfoArray& msg, const std::string& name) {
+  for (const ContactInfo& c : msg.contacts) {
+    if (c.collision == name || c.other_collision == name) return true;
+  }
+  return false;
+}
+
+// Two unit spheres of 1 kg stacked on the ground, on one vertical line: "lower" (body 0) touches
+// the ground and "upper" (body 1); at rest after `steps` steps.
+constexpr double kStackRadius = 0.05;
+constexpr double kStackMass = 1.0;
+Simulator SphereStack(int steps) {
+  Scene scene;
+  for (int b = 0; b < 2; ++b) {
+    RigidBody body;
+    body.name = b == 0 ? "lower_body" : "upper_body";
+    body.mass = kStackMass;
+    body.inertia = 0.4 * kStackMass * kStackRadius * kStackRadius * Eigen::Matrix3d::Identity();
+    scene.bodies.push_back(body);
+    Collider sphere;
+    sphere.name = b == 0 ? "lower" : "upper";
+    sphere.body = b;
+    sphere.shape = Shape::Sphere(kStackRadius);
+    sphere.law.mu = 0.5;
+    sphere.law.rbar = 1e-3;
+    scene.colliders.push_back(sphere);
+    BodyState state;
+    state.position = Eigen::Vector3d(0.0, 0.0, (2 * b + 1) * kStackRadius);
+    scene.initial_state.push_back(state);
+  }
+  scene.colliders.push_back(GroundPlane());
+  Simulator sim(scene, SimulatorOptions{});
   for (int k = 0; k < steps; ++k) sim.Step();
   return sim;
 }
@@ -52,47 +96,175 @@ TEST(Conversions, ContactsOfARestingTopCarryForcesAsPercussionOverTimeStep) {
   const FrameNames frames = MakeFrameNames(sim.scene(), "world");
   ContactInfoArray msg;
   FillContacts(sim, StepStatistics{}, frames, &msg);
-  ASSERT_EQ(msg.contacts.size(), 2u);
+  // only the closed contact is listed: the peg's open contact is absent
+  ASSERT_EQ(msg.contacts.size(), 1u);
+  ASSERT_EQ(sim.contacts().size(), 1u);
+  EXPECT_FALSE(Lists(msg, "peg_sphere"));
   const ContactInfo& big = msg.contacts[0];
-  const ContactInfo& peg = msg.contacts[1];
-  EXPECT_EQ(big.name, "big_sphere");
+  EXPECT_EQ(big.name, "big_sphere/ground");
+  EXPECT_EQ(big.collision, "big_sphere");
   EXPECT_EQ(big.body, "tippe_top");
+  EXPECT_EQ(big.other_collision, "ground");
+  EXPECT_EQ(big.other_body, "");
   EXPECT_EQ(big.frame, "big_sphere_contact");
   EXPECT_EQ(big.friction_set, "sphere");
   EXPECT_TRUE(big.closed);
-  EXPECT_FALSE(peg.closed);
   EXPECT_EQ(msg.header.frame_id, "world");
   EXPECT_EQ(msg.sim_time, sim.time());
   EXPECT_EQ(msg.header.stamp, StampOf(sim.time()));
   const ContactState& c = sim.contacts()[0];
   const double dt = sim.options().time_step;
+  EXPECT_EQ(big.feature, static_cast<std::uint32_t>(c.feature));
+  EXPECT_EQ(big.gap, c.gap);
+  EXPECT_LE(big.gap, 0.0);
+  EXPECT_EQ(big.mu, c.law.mu);
+  // Tippe-Top: R̄ = 3πR/16 with R = 5e-4 m (the sphere set has the drilling component)
+  EXPECT_EQ(big.average_friction_radius, AverageFrictionRadius(5e-4));
   EXPECT_EQ(big.normal_percussion, c.percussion[0]);
+  EXPECT_EQ(big.tangential_percussion[1], c.percussion[2]);
+  EXPECT_EQ(big.drilling_percussion, c.percussion[3]);
   EXPECT_EQ(big.normal_force, c.percussion[0] / dt);
   EXPECT_EQ(big.tangential_force[0], c.percussion[1] / dt);
   EXPECT_EQ(big.drilling_torque, c.percussion[3] / dt);
   EXPECT_EQ(big.normal_velocity, c.relative_velocity[0]);
+  EXPECT_EQ(big.drilling_velocity, c.relative_velocity[3]);
   // at rest the normal force carries the weight
   EXPECT_NEAR(big.normal_force, 6e-3 * 9.81, 1e-6 * 6e-3 * 9.81);
+  // the normal from A (the ground) to B (the sphere); the ground's tangents are world x, y
   EXPECT_EQ(ToEigen(big.normal), Eigen::Vector3d::UnitZ());
   EXPECT_EQ(ToEigen(big.tangent1), Eigen::Vector3d::UnitX());
   EXPECT_EQ(ToEigen(big.tangent2), Eigen::Vector3d::UnitY());
   EXPECT_EQ(ToEigen(big.position), c.point);
+  // the point on B: the lowest point of the big sphere, on the floor to the penetration
+  EXPECT_NEAR(big.position.z, 0.0, 1e-6);
+}
+
+TEST(Conversions, AnInvertedTopListsOnlyThePegContact) {
+  // upside down at rest, θ = π, lifted so that the peg (not the big sphere) touches the floor
+  Scene scene = MakeTippeTopScene({}, {M_PI, 0.0});
+  const TippeTopParameters p;
+  scene.initial_state[0].position.z() = p.peg_offset + p.peg_radius;
+  Simulator sim(scene, SimulatorOptions{});
+  for (int k = 0; k < 20; ++k) sim.Step();
+  ContactInfoArray msg;
+  FillContacts(sim, StepStatistics{}, MakeFrameNames(sim.scene(), "world"), &msg);
+  ASSERT_EQ(msg.contacts.size(), 1u);
+  EXPECT_EQ(msg.contacts[0].name, "peg_sphere/ground");
+  EXPECT_EQ(msg.contacts[0].collision, "peg_sphere");
+  EXPECT_EQ(msg.contacts[0].frame, "peg_sphere_contact");
+  EXPECT_FALSE(Lists(msg, "big_sphere"));
+  EXPECT_NEAR(msg.contacts[0].normal_force, 6e-3 * 9.81, 1e-6 * 6e-3 * 9.81);
+}
+
+TEST(Conversions, ContactsBetweenTwoBodiesNameBothSides) {
+  const Simulator sim = SphereStack(20);
+  const FrameNames frames = MakeFrameNames(sim.scene(), "world");
+  ContactInfoArray msg;
+  FillContacts(sim, StepStatistics{}, frames, &msg);
+  // lower/upper and lower/ground closed, upper/ground far open (absent)
+  ASSERT_EQ(msg.contacts.size(), 2u);
+  const ContactInfo* stack = nullptr;
+  const ContactInfo* floor = nullptr;
+  for (const ContactInfo& c : msg.contacts) {
+    EXPECT_TRUE(c.closed) << c.name;
+    if (c.name == "lower/upper") stack = &c;
+    if (c.name == "lower/ground") floor = &c;
+  }
+  ASSERT_NE(stack, nullptr) << msg.contacts[0].name << ", " << msg.contacts[1].name;
+  ASSERT_NE(floor, nullptr) << msg.contacts[0].name << ", " << msg.contacts[1].name;
+  // the ground is A; the normal points from A to B
+  EXPECT_EQ(floor->collision, "lower");
+  EXPECT_EQ(floor->body, "lower_body");
+  EXPECT_EQ(floor->other_collision, "ground");
+  EXPECT_EQ(floor->other_body, "");
+  EXPECT_EQ(ToEigen(floor->normal), Eigen::Vector3d::UnitZ());
+  // body–body: both links named, B is the side the normal points to
+  EXPECT_NE(stack->other_body, "");
+  EXPECT_EQ(stack->collision == "lower" ? stack->body : stack->other_body, "lower_body");
+  EXPECT_EQ(stack->collision == "upper" ? stack->body : stack->other_body, "upper_body");
+  EXPECT_EQ(stack->collision == "upper" ? "lower" : "upper", stack->other_collision);
+  const double to_b = stack->collision == "upper" ? 1.0 : -1.0;  // lower → upper is +z
+  EXPECT_NEAR((ToEigen(stack->normal) - to_b * Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-12);
+  // the upper body's weight through the stack, both bodies' weights through the floor
+  const double g = 9.81;
+  EXPECT_NEAR(stack->normal_force, kStackMass * g, 1e-5 * kStackMass * g);
+  EXPECT_NEAR(floor->normal_force, 2.0 * kStackMass * g, 1e-5 * 2.0 * kStackMass * g);
+  // a frame is named only where it sits: at the first contact of its collision (B's side)
+  for (const ContactInfo& c : msg.contacts) {
+    const ContactState* first =
+        sim.FindContact(FindCollider(sim.scene(), c.collision));
+    ASSERT_NE(first, nullptr);
+    const bool is_first = ContactName(sim.scene(), *first) == c.name;
+    EXPECT_EQ(c.frame, is_first ? c.collision + "_contact" : std::string()) << c.name;
+  }
 }
 
 TEST(Conversions, WrenchIsTheContactForceInTheContactFrame) {
   const Simulator sim = RestingTop(20);
   const FrameNames frames = MakeFrameNames(sim.scene(), "world");
+  // one slot per collider on a body, in scene order
+  ASSERT_EQ(frames.slots, (std::vector<int>{kBigSphere, kPegSphere}));
+  EXPECT_EQ(frames.contacts, (std::vector<std::string>{"big_sphere_contact", "peg_sphere_contact"}));
   geometry_msgs::WrenchStamped wrench;
-  FillWrench(sim, 0, frames, StampOf(sim.time()), &wrench);
+  EXPECT_TRUE(FillWrench(sim, 0, frames, StampOf(sim.time()), &wrench));
   const Eigen::Vector4d lambda = sim.contacts()[0].percussion / sim.options().time_step;
   EXPECT_EQ(wrench.header.frame_id, "big_sphere_contact");
-  EXPECT_EQ(wrench.wrench.force.z, lambda[0]);
-  EXPECT_EQ(wrench.wrench.force.x, lambda[1]);
-  EXPECT_EQ(wrench.wrench.force.y, lambda[2]);
-  EXPECT_EQ(wrench.wrench.torque.z, lambda[3]);
-  FillWrench(sim, 1, frames, StampOf(sim.time()), &wrench);  // the open peg contact
-  EXPECT_EQ(wrench.wrench.force.z, 0.0);
+  EXPECT_EQ(wrench.header.stamp, StampOf(sim.time()));
+  // one contact: its force and drilling torque at it, in its (t1, t2, n) axes
+  EXPECT_DOUBLE_EQ(wrench.wrench.force.z, lambda[0]);
+  EXPECT_DOUBLE_EQ(wrench.wrench.force.x, lambda[1]);
+  EXPECT_DOUBLE_EQ(wrench.wrench.force.y, lambda[2]);
+  EXPECT_DOUBLE_EQ(wrench.wrench.torque.z, lambda[3]);
+  EXPECT_EQ(wrench.wrench.torque.x, 0.0);
+  EXPECT_EQ(wrench.wrench.torque.y, 0.0);
+  EXPECT_NEAR(wrench.wrench.force.z, 6e-3 * 9.81, 1e-6 * 6e-3 * 9.81);
+  // the peg has no contact: zero, in its own frame
+  wrench.wrench.force.z = 1.0;
+  EXPECT_FALSE(FillWrench(sim, 1, frames, StampOf(sim.time()), &wrench));
   EXPECT_EQ(wrench.header.frame_id, "peg_sphere_contact");
+  EXPECT_EQ(ToEigen(wrench.wrench.force), Eigen::Vector3d::Zero());
+  EXPECT_EQ(ToEigen(wrench.wrench.torque), Eigen::Vector3d::Zero());
+}
+
+TEST(Conversions, WrenchSumsTheContactsOfOneCollider) {
+  // the lower sphere of the stack: pushed up by the floor, down by the upper sphere
+  const Simulator sim = SphereStack(20);
+  const FrameNames frames = MakeFrameNames(sim.scene(), "world");
+  ASSERT_EQ(frames.contacts, (std::vector<std::string>{"lower_contact", "upper_contact"}));
+  tf2_msgs::TFMessage tf;
+  FillTransforms(sim, frames, StampOf(sim.time()), &tf);
+  ASSERT_EQ(tf.transforms.size(), 4u);  // two links, two slots
+  const auto& lower_frame = tf.transforms[2];
+  ASSERT_EQ(lower_frame.child_frame_id, "lower_contact");
+  const Eigen::Quaterniond axes = ToEigen(lower_frame.transform.rotation);
+  const Eigen::Vector3d origin = ToEigen(lower_frame.transform.translation);
+
+  geometry_msgs::WrenchStamped wrench;
+  EXPECT_TRUE(FillWrench(sim, 0, frames, StampOf(sim.time()), &wrench));
+  EXPECT_EQ(wrench.header.frame_id, "lower_contact");
+  // the net contact force on the lower sphere carries its own weight only
+  const Eigen::Vector3d force_world = axes * ToEigen(wrench.wrench.force);
+  const double g = 9.81;
+  EXPECT_LT((force_world - Eigen::Vector3d(0.0, 0.0, kStackMass * g)).norm(), 1e-5 * kStackMass * g)
+      << force_world.transpose();
+  // at rest the contact forces have no moment about the centre S: about the frame's origin it is
+  // (r_S - origin) x F
+  const Eigen::Vector3d torque_world = axes * ToEigen(wrench.wrench.torque);
+  const Eigen::Vector3d expected = (sim.state()[0].position - origin).cross(force_world);
+  EXPECT_LT((torque_world - expected).norm(), 1e-9) << torque_world.transpose();
+  // the frame sits at one of the lower sphere's contacts, axes (t1, t2, n)
+  const ContactState* first = sim.FindContact(0);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(origin, first->point);
+  EXPECT_LT((axes * Eigen::Vector3d::UnitZ() - first->frame.normal).norm(), 1e-12);
+  EXPECT_LT((axes * Eigen::Vector3d::UnitX() - first->frame.tangent1).norm(), 1e-12);
+
+  // the upper sphere: one contact, its weight
+  EXPECT_TRUE(FillWrench(sim, 1, frames, StampOf(sim.time()), &wrench));
+  const Eigen::Quaterniond upper_axes = ToEigen(tf.transforms[3].transform.rotation);
+  EXPECT_LT((upper_axes * ToEigen(wrench.wrench.force) - Eigen::Vector3d(0.0, 0.0, kStackMass * g))
+                .norm(),
+            1e-5 * kStackMass * g);
 }
 
 TEST(Conversions, TransformsPlaceTheLinkAndTheContactFrames) {
@@ -104,10 +276,25 @@ TEST(Conversions, TransformsPlaceTheLinkAndTheContactFrames) {
   EXPECT_EQ(tf.transforms[0].header.frame_id, "odom_free");
   EXPECT_EQ(tf.transforms[0].child_frame_id, "tippe_top");
   EXPECT_EQ(tf.transforms[0].transform.translation.z, sim.state()[0].position.z());
+  // the big sphere's slot: at its contact point, axes (t1, t2, n) = world x, y, z
   EXPECT_EQ(tf.transforms[1].child_frame_id, "big_sphere_contact");
-  EXPECT_EQ(tf.transforms[1].transform.translation.z, sim.contacts()[0].point.z());
+  ASSERT_EQ(sim.contacts().size(), 1u);
+  EXPECT_EQ(ToEigen(tf.transforms[1].transform.translation), sim.contacts()[0].point);
+  EXPECT_LT(ToEigen(tf.transforms[1].transform.rotation).angularDistance(
+                Eigen::Quaterniond::Identity()),
+            1e-12);
+  // the peg's slot without a contact: at the peg sphere's centre, world axes
   EXPECT_EQ(tf.transforms[2].child_frame_id, "peg_sphere_contact");
-  for (const auto& t : tf.transforms) EXPECT_EQ(t.header.stamp, StampOf(sim.time()));
+  const TippeTopParameters p;
+  const Eigen::Vector3d peg_centre =
+      sim.state()[0].position + sim.state()[0].orientation * Eigen::Vector3d(0, 0, p.peg_offset);
+  EXPECT_LT((ToEigen(tf.transforms[2].transform.translation) - peg_centre).norm(), 1e-15);
+  EXPECT_EQ(ToEigen(tf.transforms[2].transform.rotation).coeffs(),
+            Eigen::Quaterniond::Identity().coeffs());
+  for (const auto& t : tf.transforms) {
+    EXPECT_EQ(t.header.stamp, StampOf(sim.time()));
+    EXPECT_EQ(t.header.frame_id, "odom_free");
+  }
 }
 
 TEST(Conversions, StateAgreesWithTheCoreFunctions) {
@@ -122,7 +309,9 @@ TEST(Conversions, StateAgreesWithTheCoreFunctions) {
   EXPECT_TRUE(msg.paused);
   EXPECT_EQ(msg.energy, sim.Energy());
   EXPECT_EQ(b.inclination, Inclination(s));
-  EXPECT_EQ(b.jellett_integral, JellettIntegral(sim.scene(), sim.state(), 0));
+  // of the body's first sphere collider, the big sphere
+  EXPECT_EQ(b.jellett_integral, JellettIntegral(sim.scene(), sim.state(), kBigSphere));
+  EXPECT_TRUE(std::isfinite(b.jellett_integral));
   const Eigen::Vector3d omega = s.orientation * s.angular_velocity;
   EXPECT_LT((ToEigen(b.twist.angular) - omega).norm(), 1e-12);
   EXPECT_EQ(b.vertical_spin, b.twist.angular.z);
@@ -136,20 +325,37 @@ TEST(Conversions, StateAgreesWithTheCoreFunctions) {
 TEST(Conversions, MarkersDrawClosedContactsAndDeleteOpenOnes) {
   const Simulator sim = RestingTop(20);
   const FrameNames frames = MakeFrameNames(sim.scene(), "world");
+  ASSERT_EQ(sim.contacts().size(), 1u);
   visualization_msgs::MarkerArray markers;
-  FillMarkers(sim, frames, StampOf(sim.time()), 0.5, 1000.0, &markers);
+  // the previous message drew two contacts (say, both spheres): id 1 is deleted now
+  FillMarkers(sim, frames, StampOf(sim.time()), 0.5, 1000.0, 2, &markers);
   ASSERT_EQ(markers.markers.size(), 4u);
   const visualization_msgs::Marker& force = markers.markers[0];
   EXPECT_EQ(force.action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(force.ns, "contact_force");
+  EXPECT_EQ(force.id, 0);
+  EXPECT_EQ(force.header.frame_id, "world");
   ASSERT_EQ(force.points.size(), 2u);
   const Eigen::Vector3d tail = ToEigen(force.points[0]);
   const Eigen::Vector3d head = ToEigen(force.points[1]);
   EXPECT_EQ(tail, sim.contacts()[0].point);
   const double lambda_n = sim.contacts()[0].percussion[0] / sim.options().time_step;
   EXPECT_NEAR(head.z() - tail.z(), 0.5 * lambda_n, 1e-15);
-  EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::DELETE);  // peg: open
-  EXPECT_EQ(markers.markers[3].action, visualization_msgs::Marker::DELETE);
+  const visualization_msgs::Marker& torque = markers.markers[1];
+  EXPECT_EQ(torque.action, visualization_msgs::Marker::ADD);
+  EXPECT_EQ(torque.ns, "drilling_torque");
+  EXPECT_EQ(torque.id, 0);
+  for (int k = 2; k < 4; ++k) {
+    EXPECT_EQ(markers.markers[k].action, visualization_msgs::Marker::DELETE) << k;
+    EXPECT_EQ(markers.markers[k].id, 1) << k;
+  }
+  EXPECT_EQ(markers.markers[2].ns, "contact_force");
+  EXPECT_EQ(markers.markers[3].ns, "drilling_torque");
+  // nothing drawn before: only the one contact's arrows (the reused message shrinks)
+  FillMarkers(sim, frames, StampOf(sim.time()), 0.5, 1000.0, 0, &markers);
+  ASSERT_EQ(markers.markers.size(), 2u);
+  EXPECT_EQ(markers.markers[0].action, visualization_msgs::Marker::ADD);
+  EXPECT_EQ(markers.markers[1].action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(DeleteAllMarkers("world").markers.at(0).action,
             visualization_msgs::Marker::DELETEALL);
 }

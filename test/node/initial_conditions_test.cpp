@@ -9,7 +9,7 @@
 
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/node/initial_conditions.h"
-#include "nonsmooth_sim/node/urdf_scene.h"
+#include "nonsmooth_sim/node/node_parameters.h"  // UrdfScene, SceneFromUrdf (from scene_io)
 
 namespace nonsmooth_sim::node {
 namespace {
@@ -25,12 +25,18 @@ UrdfScene Dumbbell() {
       "<geometry><sphere radius=\"0.03\"/></geometry></collision></link></robot>");
 }
 
-// lowest point of all spheres of body 0 [m]
+// lowest point of all sphere colliders of body 0 [m]
 double LowestPoint(const Scene& scene, const BodyState& s) {
   double lowest = std::numeric_limits<double>::infinity();
-  for (const Sphere& sphere : scene.spheres) {
-    lowest = std::min(lowest, (s.position + s.orientation * sphere.center).z() - sphere.radius);
+  int spheres = 0;
+  for (const Collider& c : scene.colliders) {
+    if (c.body != 0) continue;
+    EXPECT_EQ(c.shape.type, ShapeType::kSphere) << c.name;
+    ++spheres;
+    lowest = std::min(lowest,
+                      (s.position + s.orientation * c.pose.translation()).z() - c.shape.radius);
   }
+  EXPECT_EQ(spheres, 2);  // s1 and s2 of the dumbbell
   return lowest;
 }
 

@@ -1,6 +1,8 @@
 // The Tippe-Top run through the node as fast as possible inverts exactly like the headless core
 // simulator with the same scene and settings: every published state (one per step) equals the
-// core's at that step, so the inversion times agree (to 1e-9 s, in fact exactly). The node
+// core's at that step, so the inversion times agree (to 1e-9 s, in fact exactly), and every
+// ~contacts message lists exactly the core's closed contacts at its step: "big_sphere/ground" at
+// the start (the peg open, so absent), "peg_sphere/ground" once the peg touches down. The node
 // publishes every message it advertises: ~state at every step, ~contacts and /tf at 1 kHz, with
 // consecutive sequence numbers and no gaps.
 #include <gtest/gtest.h>
@@ -8,6 +10,9 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
@@ -112,11 +117,18 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   // the headless core, step by step
   Simulator reference(MakeTippeTopScene(parameters), options);
   std::vector<double> ref_time(total_steps + 1, 0.0), ref_theta(total_steps + 1, 0.0);
+  std::map<std::int64_t, std::vector<std::string>> ref_contacts;  // at the ~contacts steps
   ref_theta[0] = Inclination(reference.state()[0]);
   for (std::int64_t k = 1; k <= total_steps; ++k) {
     reference.Step();
     ref_time[k] = reference.time();
     ref_theta[k] = Inclination(reference.state()[0]);
+    if (k % kContactsPeriod == 0) {
+      std::vector<std::string>& names = ref_contacts[k];
+      for (const ContactState& c : reference.contacts()) {
+        names.push_back(ContactName(reference.scene(), c));
+      }
+    }
   }
   int mismatches = 0;
   std::vector<double> node_time, node_theta;
@@ -127,6 +139,36 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
     node_theta.push_back(m.bodies[0].inclination);
   }
   EXPECT_EQ(mismatches, 0) << "of " << received.size() << " states";
+
+  // ~contacts lists the core's closed contacts, by name, and no open one
+  int contact_mismatches = 0;
+  std::size_t peg_listed = 0;
+  for (const ContactInfoArray& m : contact_messages) {
+    std::vector<std::string> names;
+    for (const ContactInfo& c : m.contacts) {
+      names.push_back(c.name);
+      EXPECT_TRUE(c.closed) << c.name << " at t = " << m.sim_time;
+      peg_listed += c.name == "peg_sphere/ground";
+    }
+    const auto ref = ref_contacts.find(step_of(m.sim_time));
+    if (ref == ref_contacts.end() || ref->second != names) {
+      if (++contact_mismatches <= 5) {
+        ADD_FAILURE() << "contacts at t = " << m.sim_time << ": " << testing::PrintToString(names)
+                      << ", the core: "
+                      << (ref == ref_contacts.end() ? std::string("no such step")
+                                                    : testing::PrintToString(ref->second));
+      }
+    }
+  }
+  EXPECT_EQ(contact_mismatches, 0) << "of " << contact_messages.size() << " ~contacts messages";
+  // at the start the top spins on its big sphere, the peg open (absent)
+  const ContactInfoArray& start = contact_messages.front();
+  ASSERT_EQ(start.contacts.size(), 1u);
+  EXPECT_EQ(start.contacts[0].name, "big_sphere/ground");
+  EXPECT_EQ(start.contacts[0].other_collision, "ground");
+  EXPECT_TRUE(ContactsOf(start, "peg_sphere").empty());
+  // the peg touches down during the inversion
+  EXPECT_GT(peg_listed, 0u) << "no peg_sphere/ground contact in " << kDuration << " s";
 
   // the same inversion, judged over the steps the node published
   const std::int64_t first = step_of(received.front().sim_time);

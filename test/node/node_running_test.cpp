@@ -1,7 +1,9 @@
 // The node started from the launch file: TF world -> tippe_top arrives, /clock advances strictly
-// and is never 0, ~contacts reports the big sphere closed carrying the weight (Λ_N = m g Δt per
-// step) once the top rests upright, diagnostics report the run.
+// and is never 0, ~contacts reports the contact "big_sphere/ground" carrying the weight (Λ_N =
+// m g Δt per step) and no contact of the peg once the top rests upright, and so does
+// ~wrench/big_sphere; diagnostics report the run.
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <gtest/gtest.h>
 #include <rosgraph_msgs/Clock.h>
 #include <tf2_msgs/TFMessage.h>
@@ -60,6 +62,8 @@ TEST(NodeRunning, RestingTopCarriesItsWeightOnTheBigSphere) {
   ros::NodeHandle nh;
   const double dt = Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response.time_step;
   Recorder<ContactInfoArray> contacts(nh, kNode + "contacts");
+  Recorder<geometry_msgs::WrenchStamped> big_wrench(nh, kNode + "wrench/big_sphere");
+  Recorder<geometry_msgs::WrenchStamped> peg_wrench(nh, kNode + "wrench/peg_sphere");
   // upright and at rest, resting on the big sphere
   ResetState reset;
   reset.request.inclination = {0.0};
@@ -72,22 +76,52 @@ TEST(NodeRunning, RestingTopCarriesItsWeightOnTheBigSphere) {
   int checked = 0;
   for (const ContactInfoArray& m : contacts.Messages()) {
     if (m.sim_time <= after) continue;
-    ASSERT_EQ(m.contacts.size(), 2u);
+    // only the closed contact is listed: none of the peg
+    ASSERT_EQ(m.contacts.size(), 1u) << "at t = " << m.sim_time;
+    EXPECT_TRUE(ContactsOf(m, "peg_sphere").empty());
     const ContactInfo& big = m.contacts[0];
-    const ContactInfo& peg = m.contacts[1];
-    EXPECT_EQ(big.name, "big_sphere");
+    EXPECT_EQ(big.name, "big_sphere/ground");
+    EXPECT_EQ(big.collision, "big_sphere");
+    EXPECT_EQ(big.body, "tippe_top");
+    EXPECT_EQ(big.other_collision, "ground");
+    EXPECT_EQ(big.other_body, "");
+    EXPECT_EQ(big.frame, "big_sphere_contact");
     EXPECT_TRUE(big.closed);
-    EXPECT_FALSE(peg.closed);
     EXPECT_EQ(big.friction_set, "sphere");
     EXPECT_EQ(m.time_step, dt);
+    EXPECT_EQ(m.header.frame_id, "world");
+    // the normal from the ground up to the sphere
+    EXPECT_NEAR(big.normal.z, 1.0, 1e-12);
     // Λ_N = m g Δt per step, to the solver tolerance
     EXPECT_NEAR(big.normal_percussion, kMass * kGravity * dt, 1e-6 * kMass * kGravity * dt);
     EXPECT_NEAR(big.normal_force, kMass * kGravity, 1e-6 * kMass * kGravity);
     EXPECT_NEAR(std::hypot(big.tangential_force[0], big.tangential_force[1]), 0.0, 1e-9);
-    EXPECT_EQ(peg.normal_percussion, 0.0);
     ++checked;
   }
   EXPECT_GT(checked, 0);
+
+  // the same force on ~wrench/big_sphere, in the contact's frame (z along the normal)
+  ASSERT_TRUE(big_wrench.WaitForMessage(
+      [&](const geometry_msgs::WrenchStamped& w) { return w.header.stamp.toSec() > after; }, 20.0));
+  int wrenches = 0;
+  for (const geometry_msgs::WrenchStamped& w : big_wrench.Messages()) {
+    if (w.header.stamp.toSec() <= after) continue;
+    EXPECT_EQ(w.header.frame_id, "big_sphere_contact");
+    EXPECT_NEAR(w.wrench.force.z, kMass * kGravity, 1e-6 * kMass * kGravity);
+    EXPECT_NEAR(std::hypot(w.wrench.force.x, w.wrench.force.y), 0.0, 1e-9);
+    ++wrenches;
+  }
+  EXPECT_GT(wrenches, 0);
+  // the peg never touches after the reset (before it, the spinning top may have inverted): no
+  // wrench but zero ones
+  for (const geometry_msgs::WrenchStamped& w : peg_wrench.Messages()) {
+    EXPECT_EQ(w.header.frame_id, "peg_sphere_contact");
+    if (w.header.stamp.toSec() <= reset.response.sim_time) continue;
+    EXPECT_EQ(w.wrench.force.x, 0.0);
+    EXPECT_EQ(w.wrench.force.y, 0.0);
+    EXPECT_EQ(w.wrench.force.z, 0.0);
+    EXPECT_EQ(w.wrench.torque.z, 0.0);
+  }
 }
 
 TEST(NodeRunning, DiagnosticsReportTheRun) {

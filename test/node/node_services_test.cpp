@@ -1,5 +1,7 @@
 // Services: ~set_friction_set mid-run changes the law reported in ~contacts and the dynamics
-// (exactly as the core does when switched at the same step); unknown names, NaN/Inf and
+// (exactly as the core does when switched at the same step); it selects all contacts (empty),
+// those of one collision ("peg_sphere") or one contact ("big_sphere/ground"), and
+// ~get_friction_set answers for each of these; unknown names, NaN/Inf and
 // out-of-range values are rejected with a message and change nothing; ~reset twice with the same
 // initial conditions gives bit-identical trajectories; reset_world / reset_simulation keep the
 // time and restore what they promise; a reset clears the contact markers.
@@ -48,8 +50,17 @@ class NodeServices : public testing::Test {
     srv.request.contact = contact;
     return Call(nh_, kNode + "set_friction_set", srv).response;
   }
-  GetFrictionSet::Response GetSets() {
-    return Call<GetFrictionSet>(nh_, kNode + "get_friction_set").response;
+  GetFrictionSet::Response GetSets(const std::string& contact = "") {
+    GetFrictionSet srv;
+    srv.request.contact = contact;
+    return Call(nh_, kNode + "get_friction_set", srv).response;
+  }
+  /// The set ~get_friction_set reports for one collision or contact ("" if it failed).
+  std::string SetOf(const std::string& contact) {
+    const GetFrictionSet::Response r = GetSets(contact);
+    EXPECT_TRUE(r.success) << contact << ": " << r.status_message;
+    EXPECT_EQ(r.contacts, std::vector<std::string>{contact});
+    return r.success && r.friction_sets.size() == 1 ? r.friction_sets[0] : "";
   }
   GetSolverProperties::Response Solver() {
     return Call<GetSolverProperties>(nh_, kNode + "get_solver_properties").response;
@@ -99,15 +110,23 @@ TEST_F(NodeServices, FrictionSetSwitchedMidRunChangesTheLawAndTheDynamics) {
   const StepSimulation before = Step(3000);
   ASSERT_TRUE(contacts.WaitForMessage(
       [&](const ContactInfoArray& m) { return m.sim_time == before.response.sim_time; }, 20.0));
-  ContactInfoArray last_before = contacts.Messages().back();
-  EXPECT_EQ(last_before.contacts[0].friction_set, "sphere");
-  EXPECT_TRUE(last_before.contacts[0].closed);
-  EXPECT_NE(last_before.contacts[0].drilling_percussion, 0.0);  // the spinning top drills
+  const ContactInfoArray last_before = contacts.Messages().back();
+  ASSERT_EQ(last_before.sim_time, before.response.sim_time);
+  // the spinning top on its big sphere; the peg is open, so not listed
+  ASSERT_EQ(last_before.contacts.size(), 1u);
+  EXPECT_TRUE(ContactsOf(last_before, "peg_sphere").empty());
+  const ContactInfo& big_before = last_before.contacts[0];
+  EXPECT_EQ(big_before.name, "big_sphere/ground");
+  EXPECT_EQ(big_before.other_collision, "ground");
+  EXPECT_EQ(big_before.friction_set, "sphere");
+  EXPECT_TRUE(big_before.closed);
+  EXPECT_NE(big_before.drilling_percussion, 0.0);  // the spinning top drills
 
   const SetFrictionSet::Response set = SetSet("coulomb");
   ASSERT_TRUE(set.success) << set.status_message;
   EXPECT_NE(set.status_message.find("coulomb"), std::string::npos) << set.status_message;
   const GetFrictionSet::Response sets = GetSets();
+  EXPECT_TRUE(sets.success) << sets.status_message;
   EXPECT_EQ(sets.contacts, (std::vector<std::string>{"big_sphere", "peg_sphere"}));
   EXPECT_EQ(sets.friction_sets, (std::vector<std::string>{"coulomb", "coulomb"}));
 
@@ -116,10 +135,16 @@ TEST_F(NodeServices, FrictionSetSwitchedMidRunChangesTheLawAndTheDynamics) {
   const SimulationState switched = State();
   ASSERT_TRUE(contacts.WaitForMessage(
       [&](const ContactInfoArray& m) { return m.sim_time == after.response.sim_time; }, 20.0));
+  std::size_t listed = 0;
   for (const ContactInfoArray& m : contacts.Messages()) {
-    EXPECT_EQ(m.contacts[0].friction_set, "coulomb");
-    EXPECT_EQ(m.contacts[0].drilling_percussion, 0.0);  // coulomb has no drilling component
+    for (const ContactInfo& c : m.contacts) {
+      EXPECT_TRUE(c.closed) << c.name << " at t = " << m.sim_time;
+      EXPECT_EQ(c.friction_set, "coulomb") << c.name << " at t = " << m.sim_time;
+      EXPECT_EQ(c.drilling_percussion, 0.0);  // coulomb has no drilling component
+      ++listed;
+    }
   }
+  EXPECT_GT(listed, 0u) << "no contact in 3000 steps";
 
   // the same run without the switch
   ASSERT_TRUE(SetSet("sphere").success);
@@ -139,12 +164,44 @@ TEST_F(NodeServices, FrictionSetSwitchedMidRunChangesTheLawAndTheDynamics) {
   ExpectSameBodies(unswitched, StateOf(unswitched_reference));
 }
 
-TEST_F(NodeServices, FrictionSetOfOneContact) {
+TEST_F(NodeServices, FrictionSetOfOneCollisionOrOneContact) {
+  // a collision name selects all contacts of that collision
   const SetFrictionSet::Response set = SetSet("exact", "peg_sphere");
   ASSERT_TRUE(set.success) << set.status_message;
   const GetFrictionSet::Response sets = GetSets();
+  EXPECT_EQ(sets.contacts, (std::vector<std::string>{"big_sphere", "peg_sphere"}));
   EXPECT_EQ(sets.friction_sets, (std::vector<std::string>{"sphere", "exact"}));
+  EXPECT_EQ(SetOf("peg_sphere"), "exact");
+  EXPECT_EQ(SetOf("peg_sphere/ground"), "exact");
+  EXPECT_EQ(SetOf("big_sphere/ground"), "sphere");
   ASSERT_TRUE(SetSet("sphere", "peg_sphere").success);
+  EXPECT_EQ(SetOf("peg_sphere/ground"), "sphere");
+
+  // a contact name selects that contact only: the collision's own set stays
+  Recorder<ContactInfoArray> contacts(nh_, kNode + "contacts");
+  WarmUp(contacts, 10);
+  ResetState upright;  // at rest on the big sphere
+  upright.request.inclination = {0.0};
+  upright.request.spin = {0.0};
+  ASSERT_TRUE(Reset(upright).success);
+  const SetFrictionSet::Response one = SetSet("ellipsoid", "big_sphere/ground");
+  ASSERT_TRUE(one.success) << one.status_message;
+  EXPECT_EQ(SetOf("big_sphere/ground"), "ellipsoid");
+  EXPECT_EQ(SetOf("big_sphere"), "sphere");
+  EXPECT_EQ(SetOf("peg_sphere/ground"), "sphere");
+  EXPECT_EQ(GetSets().friction_sets, (std::vector<std::string>{"sphere", "sphere"}));
+  contacts.Clear();
+  const StepSimulation stepped = Step(20);
+  ASSERT_TRUE(contacts.WaitForMessage(
+      [&](const ContactInfoArray& m) { return m.sim_time == stepped.response.sim_time; }, 20.0));
+  const ContactInfoArray last = contacts.Messages().back();
+  ASSERT_EQ(last.contacts.size(), 1u);
+  EXPECT_EQ(last.contacts[0].name, "big_sphere/ground");
+  EXPECT_EQ(last.contacts[0].friction_set, "ellipsoid");
+
+  // the collision's name again: all its contacts, the one set above included
+  ASSERT_TRUE(SetSet("sphere", "big_sphere").success);
+  EXPECT_EQ(SetOf("big_sphere/ground"), "sphere");
 }
 
 TEST_F(NodeServices, RejectedRequestsChangeNothing) {
@@ -163,6 +220,13 @@ TEST_F(NodeServices, RejectedRequestsChangeNothing) {
   rejected(set.success, set.status_message, "coulomb, cylinder, ellipsoid, sphere, exact");
   set = SetSet("exact", "handle");
   rejected(set.success, set.status_message, "unknown contact \"handle\"");
+  rejected(set.success, set.status_message, "nothing changed");
+  set = SetSet("exact", "big_sphere/handle");
+  rejected(set.success, set.status_message, "unknown contact \"big_sphere/handle\"");
+  set = SetSet("exact", "big_sphere/big_sphere");
+  rejected(set.success, set.status_message, "unknown contact \"big_sphere/big_sphere\"");
+  const GetFrictionSet::Response unknown = GetSets("handle");
+  rejected(unknown.success, unknown.status_message, "unknown contact \"handle\"");
 
   ResetState reset;
   reset.request.inclination = {kNaN};
@@ -218,6 +282,8 @@ TEST_F(NodeServices, RejectedRequestsChangeNothing) {
   ExpectSameBodies(after, state);
   const GetFrictionSet::Response sets_after = GetSets();
   EXPECT_EQ(sets_after.friction_sets, sets.friction_sets);
+  EXPECT_EQ(SetOf("big_sphere/ground"), "sphere");
+  EXPECT_EQ(SetOf("peg_sphere/ground"), "sphere");
   EXPECT_EQ(Solver(), solver);
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/SimulationState.h"
 
 namespace nonsmooth_sim::node::test {
@@ -80,6 +81,17 @@ S Call(ros::NodeHandle& nh, const std::string& name, S srv = S()) {
   EXPECT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name;
   EXPECT_TRUE(client.call(srv)) << name;
   return srv;
+}
+
+/// The contacts of `msg` that involve collision `collision` (on either side), in message order.
+/// ~contacts lists closed contacts only: an open contact is simply absent.
+inline std::vector<const ContactInfo*> ContactsOf(const ContactInfoArray& msg,
+                                                  const std::string& collision) {
+  std::vector<const ContactInfo*> found;
+  for (const ContactInfo& c : msg.contacts) {
+    if (c.collision == collision || c.other_collision == collision) found.push_back(&c);
+  }
+  return found;
 }
 
 /// The bodies of two states are bit for bit equal (poses, twists and derived quantities).

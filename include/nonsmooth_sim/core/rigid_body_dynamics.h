@@ -1,4 +1,4 @@
-// Free rigid bodies and sphere–ground contacts: the ingredients of (10)-(18) of Möller, Leine,
+// Free rigid bodies: the ingredients of (10)-(18) of Möller, Leine,
 // Glocker (ESMC 2009) for the scenes of scene.h.
 //
 // Coordinates of one body (f = 7, k = 6), body frame K with its origin at the centre of mass S:
@@ -8,17 +8,7 @@
 //   M = diag(m I, Θ_S)    constant, so M⁻¹ = diag(I/m, Θ_S⁻¹) is precomputed once
 //   h(q, u) = (m g, -K_ω × Θ_S K_ω)       gravity and gyroscopic term (14)
 //
-// Sphere with centre K_r_SM (in K, from S) and radius ρ against the ground plane z = 0 (normal ẑ):
-//   g = (r_S + A K_r_SM)·ẑ - ρ                               gap (12)
-//   P = r_S + A K_r_SM - ρ ẑ,  K_r_SP = K_r_SM - ρ Aᵀẑ         lowest point of the sphere
-//   w_d = [d; K_r_SP × Aᵀd]       generalized force direction of a world force direction d at P
-//   W = [w_N w_T1 w_T2 w_τ] with N = ẑ, T1 = x̂, T2 = ŷ, and the drilling direction
-//   w_τ = [0; Aᵀẑ] (a torque about the ground normal) when the law has R̄ > 0 (50)
-//   γ = Wᵀu + χ, χ = 0 for the fixed ground (10)
-// Every direction's translational part is a world unit vector and the three are orthonormal, so
-//   W_iᵀ M⁻¹ W_j = (1/m) diag(1, 1, 1, 0) + J_i Θ_S⁻¹ J_jᵀ    (16), same body,
-// with J the 4×3 matrix of the rotational parts, rows K_r_SP × Aᵀẑ, K_r_SP × Aᵀx̂, K_r_SP × Aᵀŷ
-// and Aᵀẑ.
+// Contacts over one or two bodies: contact/contact_jacobian.h.
 //
 // The Tippe-Top's numbers (tippe_top.h, ../shared/reference/tippe-top.md): m = 6 g,
 // Θ_S = diag(8, 8, 7)·10⁻⁷ kg m², big sphere ρ = 15 mm at K_r_SM = (0, 0, 3 mm), peg sphere
@@ -31,7 +21,7 @@
 
 namespace nonsmooth_sim {
 
-/// Percussion / relative-velocity components of a sphere–ground contact, in this order.
+/// Percussion / relative-velocity components of a contact, in this order.
 enum ContactComponent : int { kNormal = 0, kTangent1 = 1, kTangent2 = 2, kDrilling = 3 };
 
 /// Mass and inertia of one body with the inverses M⁻¹ needs, computed once.
@@ -81,72 +71,6 @@ inline Eigen::Vector3d GyroscopicTorque(const Eigen::Matrix3d& inertia,
 Eigen::Vector3d ImplicitMidpointEuler(const BodyInertia& body, const Eigen::Vector3d& omega_begin,
                                       const Eigen::Vector3d& angular_impulse, double dt,
                                       const Eigen::Vector3d& guess);
-
-/// Gap g of a sphere against the ground z = 0 (12) [m]; rotation = A(p) K → world.
-inline double SphereGroundGap(const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation,
-                              const Eigen::Vector3d& center_body, double radius) {
-  return position.z() + rotation.row(2).dot(center_body) - radius;
-}
-
-/// Kinematics of a sphere–ground contact at one configuration (see the top of this file).
-struct GroundContactKinematics {
-  double gap = 0.0;                                  ///< g [m]
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< P in the world frame [m]
-  /// Rotational parts of w_N, w_T1, w_T2, w_τ (rows), in K [m, m, m, 1]. The translational parts
-  /// are ẑ, x̂, ŷ and 0.
-  Eigen::Matrix<double, 4, 3> angular = Eigen::Matrix<double, 4, 3>::Zero();
-};
-inline GroundContactKinematics SphereGroundKinematics(const Eigen::Vector3d& position,
-                                                      const Eigen::Matrix3d& rotation,
-                                                      const Eigen::Vector3d& center_body,
-                                                      double radius) {
-  GroundContactKinematics contact;
-  // Aᵀx̂, Aᵀŷ, Aᵀẑ are the rows of A
-  const Eigen::Vector3d x_body = rotation.row(0).transpose();
-  const Eigen::Vector3d y_body = rotation.row(1).transpose();
-  const Eigen::Vector3d z_body = rotation.row(2).transpose();
-  // K_r_SP = K_r_SM - ρ Aᵀẑ
-  const Eigen::Vector3d r_sp = center_body - radius * z_body;
-  contact.point = position + rotation * r_sp;
-  contact.gap = contact.point.z();
-  // rotational parts of w_d = [d; K_r_SP × Aᵀd] and of w_τ = [0; Aᵀẑ]
-  contact.angular.row(kNormal) = r_sp.cross(z_body);
-  contact.angular.row(kTangent1) = r_sp.cross(x_body);
-  contact.angular.row(kTangent2) = r_sp.cross(y_body);
-  contact.angular.row(kDrilling) = z_body;
-  return contact;
-}
-
-/// γ = Wᵀu (χ = 0) for the four directions (N, T1, T2, τ) [m/s, m/s, m/s, rad/s].
-inline Eigen::Vector4d ContactVelocity(const GroundContactKinematics& contact,
-                                       const Eigen::Vector3d& linear_velocity,
-                                       const Eigen::Vector3d& angular_velocity_body) {
-  Eigen::Vector4d gamma = contact.angular * angular_velocity_body;
-  gamma[kNormal] += linear_velocity.z();
-  gamma[kTangent1] += linear_velocity.x();
-  gamma[kTangent2] += linear_velocity.y();
-  return gamma;
-}
-
-/// Linear part of W Λ (a world force/percussion): (Λ_T1, Λ_T2, Λ_N).
-inline Eigen::Vector3d ContactLinearImpulse(const Eigen::Vector4d& percussion) {
-  return {percussion[kTangent1], percussion[kTangent2], percussion[kNormal]};
-}
-/// Rotational part of W Λ, in K: Jᵀ Λ.
-inline Eigen::Vector3d ContactAngularImpulse(const GroundContactKinematics& contact,
-                                             const Eigen::Vector4d& percussion) {
-  return contact.angular.transpose() * percussion;
-}
-
-/// Delassus block W_iᵀ M⁻¹ W_j (16) of two contacts on the same body, all four directions.
-inline Eigen::Matrix4d DelassusBlock(const BodyInertia& body, const GroundContactKinematics& a,
-                                     const GroundContactKinematics& b) {
-  Eigen::Matrix4d block = a.angular * body.inverse_inertia * b.angular.transpose();
-  block(kNormal, kNormal) += body.inverse_mass;
-  block(kTangent1, kTangent1) += body.inverse_mass;
-  block(kTangent2, kTangent2) += body.inverse_mass;
-  return block;
-}
 
 }  // namespace nonsmooth_sim
 

@@ -1,6 +1,14 @@
-// A scene: free rigid bodies, spheres fixed on them that touch the ground plane z = 0, each with
-// its own contact law, gravity, and the initial state. A plain data structure: the headless
-// simulator builds it in code (tippe_top.h), the ROS node from a URDF.
+// A scene (the model, immutable while it runs except through the Simulator's setters): free rigid
+// bodies, colliders (a convex shape fixed on a body or in the world, with its contact law),
+// gravity and the initial state. A plain data structure: built in code (tippe_top.h), or from a
+// URDF by the scene loader (scene_io/urdf_scene.h).
+//
+// Contact laws of a pair of colliders (CombineLaws): μ = min(μ_a, μ_b) (Gazebo/ODE), R̄ =
+// max(R̄_a, R̄_b) (the larger patch: the ground has none), ε = max(ε_a, ε_b) (Gazebo), and the
+// friction set of the collider that comes first in Scene::colliders among those on a body (the
+// ground has no say). The ground's default law (GroundLaw) is neutral under these rules: μ = the
+// largest double, R̄ = 0, ε = 0, so that a body's own law decides (Gazebo's ground_plane model
+// has μ = 100, which would cap a body's μ).
 #ifndef NONSMOOTH_SIM_CORE_SCENE_H_
 #define NONSMOOTH_SIM_CORE_SCENE_H_
 
@@ -10,6 +18,7 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/contact_solver.h"
+#include "nonsmooth_sim/core/shape.h"
 
 namespace nonsmooth_sim {
 
@@ -24,12 +33,15 @@ struct RigidBody {
   Eigen::Vector3d com_in_link = Eigen::Vector3d::Zero();
 };
 
-/// A sphere fixed on a body; it makes a contact with the ground plane z = 0 (normal +z).
-struct Sphere {
-  std::string name;
-  int body = 0;                                   ///< index into Scene::bodies
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< centre in K, relative to S [m]
-  double radius = 0.0;                            ///< [m], > 0
+/// Body index of a collider fixed in the world (static environment: the ground, walls, a table).
+inline constexpr int kWorld = -1;
+
+/// A convex shape fixed on a body (in its frame K, origin at S) or in the world.
+struct Collider {
+  std::string name;  ///< unique in the scene; contacts are named "<name a>/<name b>"
+  int body = kWorld;  ///< index into Scene::bodies, or kWorld
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< shape frame → K (or → world)
+  Shape shape;
   ContactLaw law;
 };
 
@@ -43,17 +55,31 @@ struct BodyState {
 
 struct Scene {
   std::vector<RigidBody> bodies;
-  std::vector<Sphere> spheres;
+  std::vector<Collider> colliders;
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< [m/s²]
   std::vector<BodyState> initial_state;      ///< one per body
 };
 
+/// μ = largest double, R̄ = 0, ε = 0: a body's own law decides (CombineLaws).
+ContactLaw GroundLaw();
+/// The ground plane z = 0 (normal +z), named "ground".
+Collider GroundPlane(const ContactLaw& law = GroundLaw());
+
+/// The law of a contact between colliders a and b (see the top of this file).
+ContactLaw CombineLaws(const Collider& a, const Collider& b);
+
+/// Index of the collider named `name`, or -1.
+int FindCollider(const Scene& scene, const std::string& name);
+
 /// Throws std::invalid_argument naming the element and the reason (non-positive mass, inertia not
-/// symmetric positive definite, radius ≤ 0, μ < 0, R̄ < 0, ε ∉ [0, 1], NaN anywhere, a sphere on a
-/// missing body, initial_state of the wrong size or not finite).
+/// symmetric positive definite, a bad shape, a plane on a body, μ < 0, R̄ < 0, ε ∉ [0, 1], NaN
+/// anywhere, a collider on a missing body, two colliders with one name, initial_state of the wrong
+/// size or not finite).
 void ValidateScene(const Scene& scene);
 /// Throws std::invalid_argument unless every entry is finite and the quaternions are non-zero.
 void ValidateState(const Scene& scene, const std::vector<BodyState>& state);
+/// Throws std::invalid_argument naming `where` (μ, R̄ finite ≥ 0, ε in [0, 1], a known set).
+void ValidateLaw(const std::string& where, const ContactLaw& law);
 
 /// Mechanical energy E = Σ ½ m|v_S|² + ½ ωᵀΘω - m g·r_S [J].
 double MechanicalEnergy(const Scene& scene, const std::vector<BodyState>& state);
@@ -61,9 +87,8 @@ double MechanicalEnergy(const Scene& scene, const std::vector<BodyState>& state)
 /// Angle between the body's e3 axis and the world z axis [rad], in [0, π].
 double Inclination(const BodyState& state);
 
-/// Jellett's integral for sphere `sphere` touching the ground: J = L_S · (r_S - r_P) with P the
-/// lowest point of the sphere [kg m³/s] (Tippe-Top: J = L_S · (R1 ẑ - a1 e3)).
-double JellettIntegral(const Scene& scene, const std::vector<BodyState>& state, int sphere);
+/// World pose of a body's frame K (origin S) from its state.
+Eigen::Isometry3d BodyPose(const BodyState& state);
 
 }  // namespace nonsmooth_sim
 

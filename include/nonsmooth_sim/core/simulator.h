@@ -15,8 +15,16 @@
 //    Tippe-Top's reference ε = 0 is "normal and tangential". A contact enters the solve only if it
 //    is closed at the midpoint (12); open contacts cost nothing, μ = 0 gives no tangential
 //    components, coulomb or R̄ = 0 no drilling component (ContactDimension).
-//  - The contact problem (17) is solved by ContactSolver, warm-started from the previous step's
-//    percussions of the contacts that were closed then (zero for newly closed ones).
+//  - Contacts at q_M: the broad phase (broad_phase.h) proposes pairs of colliders on different
+//    bodies (or a body and the static world), the pair function of the collision table
+//    (collision.h) gives points, normals and gaps; those with g ≤ 0 form the index set. W_i
+//    spans one body (against the world) or two (contact_jacobian.h).
+//  - Bodies linked by closed contacts form islands; each island is one contact problem (17),
+//    solved by ContactSolver on its own (the G_ij of contacts on different islands are zero). A
+//    body without a closed contact costs only its free step.
+//  - Warm start and tangent frame of a contact are kept per (collider pair, feature): the
+//    previous step's percussions of the contacts that were closed then (zero for newly closed
+//    ones), the tangents carried over (contact_frame.h).
 //  - GyroscopicScheme::kImplicitMidpoint replaces the gyroscopic part of h(q_M, u_B) by the
 //    implicit midpoint rule Θ(ω_E - ω_B) = -Δt ω_M × Θω_M + Σ J_iᵀΛ_i, ω_M = (ω_B + ω_E)/2
 //    (solved by Newton for fixed Λ), with a few fixed-point passes around the contact solve: the
@@ -46,10 +54,16 @@
 #define NONSMOOTH_SIM_CORE_SIMULATOR_H_
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
+#include <string>
+#include <unordered_map>
 #include <string_view>
 #include <vector>
 
+#include "nonsmooth_sim/core/collision/broad_phase.h"
+#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/contact_solver.h"
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
 #include "nonsmooth_sim/core/scene.h"
@@ -83,41 +97,60 @@ struct SimulatorOptions {
   double time_step = 1e-4;  ///< Δt [s], in [1e-7, 1e-2]
   SolverOptions solver;
   GyroscopicScheme gyroscopic = GyroscopicScheme::kExplicit;
-  /// After (15), each body whose closed contacts (12) all end below -kGapCorrectionSlop is
-  /// translated along the ground normal +z until the highest of them is at -kGapCorrectionSlop
-  /// (its penetration minus the slop; with one closed contact: the deepest penetration minus the
-  /// slop). Velocities are kept. A lift never opens a contact that carried the body (lifting by
-  /// the deepest of several would, and feed a rocking limit cycle). A position projection outside
-  /// the paper's scheme that bounds the penetration drift of rolling contacts; false = the
-  /// paper's scheme exactly. It adds m·g·Δz of potential energy, reported in
-  /// StepStatistics::gap_correction_energy.
+  /// After (15), the closed contacts (12) are evaluated again at q_E (same pair, same feature).
+  /// Per body and static collider it touches (a contact with the world), and per pair of bodies:
+  /// if all closed contacts of that group end below -kGapCorrectionSlop, the body is translated
+  /// along the group's normal until the highest of them is at -kGapCorrectionSlop (for a pair of
+  /// bodies the two share the translation in inverse proportion to their masses, so that the
+  /// centre of mass of the pair stays). Velocities are kept. A lift never opens a contact that
+  /// carried the body (lifting by the deepest of several would, and feed a rocking limit cycle).
+  /// A position projection outside the paper's scheme that bounds the penetration drift of
+  /// rolling contacts; false = the paper's scheme exactly. It adds -m g·Δr of potential energy,
+  /// reported in StepStatistics::gap_correction_energy. For the Tippe-Top on the ground this is a
+  /// lift along +z by the highest closed contact's depth less the slop.
   bool gap_correction = true;
 };
 /// Throws std::invalid_argument naming the field and its allowed range.
 void ValidateSimulatorOptions(const SimulatorOptions& options);
 
-/// One sphere-ground contact after a step.
+/// One contact of the index set (12) of the last step, at the midpoint q_M where it was found.
+/// A and B are the two colliders, the normal points from A to B; a static collider is always A.
 struct ContactState {
-  bool closed = false;          ///< in the index set (12) of the last step
-  double gap = 0.0;             ///< g at the end of the step [m]
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< lowest point of the sphere, world [m]
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< ground normal, world
-  /// Λ = (Λ_N, Λ_T1, Λ_T2, Λ_τ) of the last step [N s, N s, N s, N m s]; tangents along world x, y.
-  /// Components the contact does not model are 0.
+  int collider_a = 0;  ///< index into Scene::colliders
+  int collider_b = 0;
+  int body_a = kWorld;  ///< body of A (kWorld: static)
+  int body_b = 0;       ///< body of B
+  int feature = 0;      ///< ContactGeometry::feature of the pair function
+  double gap = 0.0;     ///< g(q_M) ≤ 0 [m]
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< contact point on B, world [m]
+  ContactFrame frame;   ///< n (A → B), t1, t2, world
+  ContactLaw law;       ///< the pair's law (CombineLaws), R̄ of a face patch where it is one
+  int dimension = 1;    ///< ContactDimension(law)
+  /// Λ = (Λ_N, Λ_T1, Λ_T2, Λ_τ) on B [N s, N s, N s, N m s]; components the contact does not
+  /// model are 0.
   Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
-  /// γ = (γ_N, γ_T1, γ_T2, γ_τ) = Wᵀu_E at the end of the step [m/s, m/s, m/s, rad/s]: with the
-  /// W(q_M) the contact law constrained for a closed contact, with W(q_E) for an open one.
+  /// γ_E = W(q_M)ᵀu_E [m/s, m/s, m/s, rad/s]: velocity of B relative to A, the one the law
+  /// constrained.
   Eigen::Vector4d relative_velocity = Eigen::Vector4d::Zero();
 };
+
+/// "<first>/<second>": the two colliders' names in Scene::colliders order (e.g.
+/// "big_sphere/ground"). Stable while the scene does not change.
+std::string ContactName(const Scene& scene, const ContactState& contact);
 
 /// Most fixed-point passes of the implicit-midpoint gyroscopic scheme around the contact solve.
 inline constexpr int kMaxGyroscopicPasses = 6;
 
 struct StepStatistics {
-  /// Of the (last) contact solve; with no closed contact iterations = 0 and converged = true. With
-  /// kImplicitMidpoint, `iterations` is summed over the passes.
+  /// Over the islands' contact solves: iterations summed (and over the passes of
+  /// kImplicitMidpoint), residual and max_change the largest, converged if every island did;
+  /// friction_projected / normal_projected per contact of contacts(). With no closed contact
+  /// iterations = 0 and converged = true.
   SolverStatistics solver;
   int closed_contacts = 0;
+  int islands = 0;  ///< contact problems (17) solved: bodies linked by closed contacts
+  /// Deepest penetration of a closed contact at the midpoint, max(0, -g(q_M)) [m].
+  double max_penetration = 0.0;
   int gyroscopic_passes = 0;  ///< contact solves of this step (1 with kExplicit; 0 without contact)
   /// Largest Δt·|ω| over the bodies in this step: the explicit gyroscopic scheme's energy error
   /// per step grows like (Δt·|ω|)².
@@ -125,9 +158,10 @@ struct StepStatistics {
   /// gyroscopic == kExplicit and max_dt_omega > kExplicitGyroscopicMaxDtOmega: energy can grow by
   /// O((Δt·|ω|)²) per step and the run can diverge.
   bool explicit_gyroscopic_unsafe = false;
-  /// Largest lift Δz of a body by SimulatorOptions::gap_correction in this step [m] (0: none).
+  /// Largest translation |Δr| of a body by SimulatorOptions::gap_correction in this step [m]
+  /// (0: none).
   double gap_correction = 0.0;
-  /// Potential energy the lifts added in this step, Σ -m g·ẑ Δz over the lifted bodies [J].
+  /// Potential energy the lifts added in this step, Σ -m g·Δr over the moved bodies [J].
   double gap_correction_energy = 0.0;
   /// false: this step met a non-finite value (state, free velocities, contact problem, end state or
   /// the squared norms of the end velocities), i.e. the scheme diverged. The step was not taken:
@@ -145,7 +179,7 @@ class Simulator {
   /// Advances by one time step (not after a non-finite step: see StepStatistics::state_finite).
   StepStatistics Step();
   /// The same, filling `stats` in place (all fields overwritten): with one StepStatistics reused
-  /// across steps, a step allocates nothing once its problem sizes have been seen.
+  /// across steps, a step allocates nothing once its problem sizes and pairs have been seen.
   void Step(StepStatistics* stats);
 
   double time() const { return time_; }
@@ -154,8 +188,12 @@ class Simulator {
   const Scene& scene() const { return scene_; }
   const SimulatorOptions& options() const { return options_; }
   const std::vector<BodyState>& state() const { return state_; }
-  /// One per sphere of the scene, from the last step.
+  /// The closed contacts of the last step, ordered by collider pair and feature.
   const std::vector<ContactState>& contacts() const { return contacts_; }
+  /// The first closed contact of the last step that involves collider `collider`, or nullptr.
+  const ContactState* FindContact(int collider) const;
+  /// Whether collider `collider` had a closed contact in the last step.
+  bool InContact(int collider) const { return FindContact(collider) != nullptr; }
 
   /// Replaces the state (validated; quaternions normalised) and clears the warm start, the contact
   /// report and diverged(). Throws std::invalid_argument and leaves everything unchanged on bad
@@ -164,11 +202,15 @@ class Simulator {
   void SetTime(double time);
   /// Validated like the constructor; throws and changes nothing on bad input.
   void SetOptions(const SimulatorOptions& options);
-  /// Switches the friction law of one sphere's contact (or all with std::nullopt); the state is
-  /// kept, the warm start of changed contacts dropped. Throws std::out_of_range for a bad index.
-  void SetFrictionSet(FrictionSet set, std::optional<int> sphere = std::nullopt);
-  /// Replaces one sphere's law (validated; throws std::invalid_argument / std::out_of_range).
-  void SetContactLaw(int sphere, const ContactLaw& law);
+  /// Switches the friction set of every contact (name empty), of every contact of one collider
+  /// (name = a collider's name) or of one contact (name = ContactName, "<first>/<second>"). The
+  /// state is kept, the warm start of changed contacts dropped. Throws std::invalid_argument for an
+  /// unknown name or set, changing nothing.
+  void SetFrictionSet(FrictionSet set, const std::string& name = "");
+  /// The friction set a contact named `name` ("<first>/<second>") would use.
+  FrictionSet FrictionSetOf(const std::string& name) const;
+  /// Replaces one collider's law (validated; throws std::invalid_argument / std::out_of_range).
+  void SetContactLaw(int collider, const ContactLaw& law);
 
   double Energy() const { return MechanicalEnergy(scene_, state_); }
 
@@ -178,7 +220,7 @@ class Simulator {
     Eigen::Vector3d position_mid;        // r_S(q_M) [m]
     Eigen::Quaterniond orientation_mid;  // p_M, normalised
     Eigen::Matrix3d rotation_mid;        // A(p_M)
-    Eigen::Matrix3d rotation_end;        // A(p_E), for the gap correction and contact report
+    Eigen::Matrix3d rotation_end;        // A(p_E), for the gap correction
     Eigen::Vector3d linear_free;         // v_B + g Δt: linear part of u_B + M⁻¹hΔt [m/s]
     Eigen::Vector3d gyroscopic_impulse;  // Δt·(-ω × Θω) at ω_B (explicit) or ω_M (implicit) [N m s]
     Eigen::Vector3d angular_free;        // ω_B + Θ⁻¹·gyroscopic_impulse [rad/s]
@@ -188,47 +230,90 @@ class Simulator {
     Eigen::Vector3d linear_end;          // v_E [m/s]
     Eigen::Vector3d position_end;        // r_S(q_E) [m]
     Eigen::Quaterniond orientation_end;  // p_E, normalised
-    double highest_closed_gap = 0.0;     // largest g(q_E) of its closed contacts [m]
-    bool has_contact = false;
+    int island = -1;                     // index into islands_ (-1: no closed contact)
+  };
+  // Memory of one (pair, feature) across steps.
+  struct ContactMemory {
+    Eigen::Vector3d tangent1 = Eigen::Vector3d::UnitX();
+    Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
+    long closed_step = -2;  // the step it was last closed in
   };
   // A contact of the index set (12) of the current step.
   struct ClosedContact {
-    int sphere = 0;
-    int body = 0;
-    int offset = 0;     // first component in the stacked Λ, c, G
-    int dimension = 0;  // ContactDimension of its law
-    GroundContactKinematics kinematics;  // at q_M
-    Eigen::Vector4d gamma_begin;         // γ^B = W(q_M)ᵀu_B
+    ContactState report;         // geometry, frame, law at q_M; percussion and γ_E after solve
+    ContactJacobian jacobian;    // W at q_M
+    Eigen::Vector4d gamma_begin; // γ^B = W(q_M)ᵀu_B
+    std::uint64_t key = 0;       // (pair, feature) of the warm start and the tangent frame
+    ContactMemory* memory = nullptr;  // memory_[key] (node pointers stay valid on rehash)
+    int offset = 0;              // first component in its island's stacked Λ, c, G
+  };
+  // The closed contacts of one body with one static collider, or of two bodies, at q_E.
+  struct GapGroup {
+    int body_a = kWorld;        // kWorld for a static A
+    int body_b = 0;
+    int static_collider = -1;  // A's collider if it is static
+    double highest_gap = 0.0;  // g(q_E) [m]
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  };
+  // Bodies linked by closed contacts: one contact problem (17).
+  struct Island {
+    int first_contact = 0;  // into island_contacts_
+    int contact_count = 0;
+    int size = 0;           // Σ dimensions
   };
 
   void Initialize();
-  // false if the contact problem is not finite (nothing solved)
-  bool SolveContacts(int size, StepStatistics* stats);
+  void ComputeMidpoints(StepStatistics* stats, bool* finite);
+  void FindContacts(StepStatistics* stats);
+  void AddPairContacts(int first, int second);
+  void BuildIslands(StepStatistics* stats);
+  // false if an island's contact problem is not finite (nothing solved)
+  bool SolveIsland(const Island& island, StepStatistics* stats);
   // (18), (15) into body_step_; false if any end value is not finite (state_ untouched)
   bool ComputeEndState();
   void CorrectGaps(StepStatistics* stats);
-  void ReportContacts();
+  void ApplyImpulses(const Island& island, const Eigen::VectorXd& lambda);
   ContactProblem& ProblemOfSize(int size);
+  // the law of a pair with the overrides of SetFrictionSet
+  ContactLaw PairLaw(int first, int second) const;
+  // World pose of a collider at q_M (end = false) or q_E (end = true).
+  Eigen::Isometry3d ColliderPose(int collider, bool end) const;
 
   Scene scene_;
   SimulatorOptions options_;
   std::vector<BodyState> state_;
   double time_ = 0.0;
+  long step_count_ = 0;
   bool diverged_ = false;
   std::vector<ContactState> contacts_;
   ContactSolver solver_;
-  // per sphere: last step's percussion, for the warm start
-  std::vector<Eigen::Vector4d> warm_start_;
   // per body: M⁻¹ (10), computed once
   std::vector<BodyInertia> inertia_;
-  // per sphere: ContactDimension of its law
-  std::vector<int> dimension_;
+  // friction sets set per contact name by SetFrictionSet: (first, second) collider → set
+  std::vector<std::pair<std::pair<int, int>, FrictionSet>> pair_sets_;
+  std::vector<int> planes_;  // static plane colliders
+  // whether two colliders that are not planes can meet (two bodies with colliders, or a body and
+  // a static collider that is not a plane): without, the sweep is skipped
+  bool needs_sweep_ = false;
+  std::vector<Eigen::Isometry3d> collider_pose_;  // per collider, at q_M during FindContacts
+  std::vector<bool> collider_rotated_;  // per collider: its pose has a rotation (not identity)
+  // warm starts and tangent frames by (pair, feature)
+  std::unordered_map<std::uint64_t, ContactMemory> memory_;
   // workspace of Step(), sized once
   std::vector<BodyStep> body_step_;
+  std::vector<BoundingSphere> spheres_;
+  std::vector<std::pair<int, int>> pairs_;
   std::vector<ClosedContact> closed_;
+  std::vector<Island> islands_;
+  std::vector<int> island_contacts_;  // contact indices grouped by island
+  std::vector<int> union_find_;       // per body
+  std::vector<int> island_bodies_;    // body indices grouped by island (same order as contacts)
+  std::vector<int> island_body_start_;
+  std::vector<GapGroup> gap_groups_;
   // contact problem and percussions per stacked size n (index n), sized on first use
   std::vector<ContactProblem> problems_;
   std::vector<Eigen::VectorXd> lambdas_;
+  SolverStatistics island_stats_;
 };
 
 }  // namespace nonsmooth_sim

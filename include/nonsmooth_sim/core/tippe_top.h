@@ -32,14 +32,25 @@ constexpr double AverageFrictionRadius(double contact_radius) {
   return 3.0 * 3.14159265358979323846 * contact_radius / 16.0;
 }
 
-/// Body "tippe_top", spheres "big_sphere" (index 0) and "peg_sphere" (index 1); the big sphere
-/// just touches the floor: z_S0 = R1 - a1 cos θ0.
+/// Colliders of MakeTippeTopScene(), in this order.
+inline constexpr int kBigSphere = 0;
+inline constexpr int kPegSphere = 1;
+inline constexpr int kTippeTopGround = 2;
+
+/// Body "tippe_top", sphere colliders "big_sphere" (kBigSphere) and "peg_sphere" (kPegSphere) and
+/// the ground plane "ground" (kTippeTopGround) with GroundLaw(), so that the top's law decides;
+/// the big sphere just touches the floor: z_S0 = R1 - a1 cos θ0.
 Scene MakeTippeTopScene(const TippeTopParameters& parameters = {},
                         const TippeTopInitialConditions& initial = {});
 
 /// The state for the given initial conditions (centre of mass at rest, big sphere touching).
 BodyState TippeTopInitialState(const TippeTopParameters& parameters,
                                const TippeTopInitialConditions& initial);
+
+/// Jellett's integral of a body touching the ground z = 0 with sphere collider `sphere`:
+/// J = L_S · (r_S - r_P) with P the lowest point of the sphere [kg m³/s] (Tippe-Top:
+/// J = L_S · (R1 ẑ - a1 e3)). Throws std::invalid_argument unless `sphere` is a sphere on a body.
+double JellettIntegral(const Scene& scene, const std::vector<BodyState>& state, int sphere);
 
 }  // namespace nonsmooth_sim
 

@@ -22,12 +22,18 @@ namespace nonsmooth_sim::node {
 /// ros::Time(0) means "no time yet" to nodes on /use_sim_time (and rosbag refuses it).
 ros::Time StampOf(double sim_time);
 
-/// Names of the TF frames and topics of one scene.
+/// Names of the TF frames and topics of one scene. Every collider on a body is a contact "slot":
+/// a TF frame "<collision>_contact" (at its first closed contact, axes t1, t2, n; without a
+/// contact at the collider's origin with world axes) and a wrench topic ~wrench/<collision>.
 struct FrameNames {
   std::string world;                  ///< fixed frame
-  std::vector<std::string> contacts;  ///< per sphere: "<collision name>_contact"
+  std::vector<int> slots;             ///< the colliders on bodies, in scene order
+  std::vector<std::string> contacts;  ///< per slot: "<collision name>_contact"
 };
 FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
+
+/// The first closed contact of slot `slot`, or nullptr.
+const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot);
 
 /// A ROS graph name made of [A-Za-z0-9_] (other characters become '_').
 std::string GraphName(const std::string& name);
@@ -39,25 +45,28 @@ geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state);
 void FillState(const Simulator& sim, bool paused, const std::string& world_frame,
                SimulationState* msg);
 
-/// ~contacts: every sphere's contact after the last step; forces = percussions / Δt.
+/// ~contacts: every closed contact of the last step (body–ground, body–static, body–body), named
+/// "<first collision>/<second collision>"; forces = percussions / Δt.
 void FillContacts(const Simulator& sim, const StepStatistics& last_step, const FrameNames& frames,
                   ContactInfoArray* msg);
 
-/// /tf: world → each body's link, and world → a frame at each sphere's contact point (axes of
-/// the world: tangents x, y and normal z, as the core's percussions).
+/// /tf: world → each body's link, and world → each slot's frame (see FrameNames).
 void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                     tf2_msgs::TFMessage* msg);
 
-/// The force λ = Λ/Δt on the body and the drilling torque at contact `sphere`, in its contact
-/// frame (zero for an open contact).
-void FillWrench(const Simulator& sim, int sphere, const FrameNames& frames, const ros::Time& stamp,
-                geometry_msgs::WrenchStamped* msg);
+/// The contact wrench λ = Λ/Δt on slot `slot`'s collider, summed over its closed contacts, about
+/// and in the axes of its slot frame (one contact: the force and the drilling torque at it). Zero
+/// and false without a closed contact.
+bool FillWrench(const Simulator& sim, std::size_t slot, const FrameNames& frames,
+                const ros::Time& stamp, geometry_msgs::WrenchStamped* msg);
 
-/// Arrows in the world frame: per closed contact the force (namespace "contact_force", tail at
-/// the contact point) and the drilling torque (namespace "drilling_torque", along the normal);
-/// DELETE for open contacts. Lengths: force_scale [m/N], torque_scale [m/(N m)].
+/// Arrows in the world frame: per closed contact i the force (namespace "contact_force", id i,
+/// tail at the contact point) and the drilling torque (namespace "drilling_torque", along the
+/// normal); DELETE for the ids up to previous_count that have no contact now. Lengths:
+/// force_scale [m/N], torque_scale [m/(N m)].
 void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
-                 double force_scale, double torque_scale, visualization_msgs::MarkerArray* msg);
+                 double force_scale, double torque_scale, std::size_t previous_count,
+                 visualization_msgs::MarkerArray* msg);
 
 /// One DELETEALL marker (sent after a reset).
 visualization_msgs::MarkerArray DeleteAllMarkers(const std::string& world_frame);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/scene.h"
-#include "nonsmooth_sim/node/urdf_scene.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::node {
 
@@ -36,9 +36,10 @@ InitialConditions Merge(const InitialConditions& defaults, const InitialConditio
 void ValidateInitialConditions(const InitialConditions& initial);
 
 /// The start of every body: `body` from `initial` (unset θ and ω: the core's
-/// TippeTopInitialConditions defaults), the other bodies at their URDF pose, at rest.
+/// TippeTopInitialConditions defaults), the other bodies at their URDF pose, at rest. A body that
+/// is not a Tippe-Top, with no field of `initial` set, stays at its URDF pose, at rest.
 /// Throws std::invalid_argument (see ValidateInitialConditions) and std::out_of_range for `body`.
-std::vector<BodyState> InitialState(const UrdfScene& urdf, int body,
+std::vector<BodyState> InitialState(const scene_io::UrdfScene& urdf, int body,
                                     const InitialConditions& initial);
 
 }  // namespace nonsmooth_sim::node

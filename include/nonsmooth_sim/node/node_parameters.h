@@ -8,9 +8,16 @@
 
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/initial_conditions.h"
-#include "nonsmooth_sim/node/urdf_scene.h"
+#include "nonsmooth_sim/scene_io/initial_state.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::node {
+
+using scene_io::SceneFromUrdf;
+using scene_io::UrdfError;
+using scene_io::UrdfScene;
+using scene_io::UrdfSceneOptions;
+using scene_io::ValidateUrdfSceneOptions;
 
 /// Publish rates are in Hz of simulated time (a message every round(1/(rate·Δt)) steps, at most
 /// one per step; 0 = never) unless marked wall.
@@ -26,6 +33,9 @@ struct NodeParameters {
   std::string initial_body;       ///< ~initial/body: the body the initial conditions move
   InitialConditions initial;      ///< ~initial/{inclination,spin,position,orientation,
                                   ///< linear_velocity,angular_velocity}
+  /// ~initial_state: config/<scene>.yaml loaded as parameters (bodies/<link>/{position,
+  /// orientation, linear_velocity, angular_velocity}, each optional); applied after ~initial/...
+  scene_io::InitialStateSpec initial_state;
   double real_time_factor = 1.0;  ///< ~real_time_factor: sim time / wall time, ≥ 0; 0 = as fast
                                   ///< as possible
   bool paused = false;            ///< ~paused: start paused

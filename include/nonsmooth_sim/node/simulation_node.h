@@ -32,7 +32,7 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
 #include "nonsmooth_sim/node/node_parameters.h"
-#include "nonsmooth_sim/node/urdf_scene.h"
+#include "nonsmooth_sim/node/node_parameters.h"
 
 namespace nonsmooth_sim::node {
 
@@ -107,7 +107,6 @@ class SimulationNode {
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  int SphereIndex(const std::string& name) const;  ///< -1 if unknown
   int BodyIndex(const std::string& name) const;    ///< -1 if unknown
   std::string FrictionSetSummary() const;
 
@@ -137,7 +136,8 @@ class SimulationNode {
   Channel tf_, contacts_, state_, markers_;
   ros::Time last_tf_stamp_, last_clock_stamp_;
   Clock::time_point last_clock_wall_;
-  std::vector<bool> wrench_closed_;
+  std::vector<bool> wrench_closed_;  ///< per slot: had a contact at the last publish
+  std::size_t markers_count_ = 0;     ///< contacts drawn by the last marker message
   double pace_ = 0.0;  ///< real-time factor the integrator keeps (0: as fast as possible)
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;

@@ -1,18 +1,21 @@
 // Strict XML checks and extension tags of a URDF (TinyXML2). See urdf_xml.h.
-#include "nonsmooth_sim/node/urdf_xml.h"
+#include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 #include <tinyxml2.h>
 
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 
-#include "nonsmooth_sim/node/urdf_scene.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
 
-namespace nonsmooth_sim::node {
+namespace nonsmooth_sim::scene_io {
 namespace {
 
 using tinyxml2::XMLElement;
+
+constexpr double kInf = HUGE_VAL;
 
 // "link "tippe_top" > inertial > mass" (robot excluded), for error lines.
 std::string Describe(const XMLElement* element) {
@@ -30,9 +33,12 @@ std::string Describe(const XMLElement* element) {
   return path;
 }
 
+std::string DescribeWithLine(const XMLElement* element) {
+  return Describe(element) + " (line " + std::to_string(element->GetLineNum()) + ")";
+}
+
 [[noreturn]] void Fail(const XMLElement* element, const std::string& reason) {
-  throw UrdfError("urdf: " + Describe(element) + " (line " +
-                  std::to_string(element->GetLineNum()) + "): " + reason);
+  throw UrdfError("urdf: " + DescribeWithLine(element) + ": " + reason);
 }
 
 std::vector<std::string> Tokens(const char* text) {
@@ -40,6 +46,17 @@ std::vector<std::string> Tokens(const char* text) {
   std::vector<std::string> tokens;
   for (std::string token; in >> token;) tokens.push_back(token);
   return tokens;
+}
+
+using Names = std::vector<std::string>;
+
+std::string Join(const Names& names, const char* before, const char* after) {
+  std::string list;
+  for (const std::string& name : names) {
+    if (!list.empty()) list += ", ";
+    list += std::string(before) + name + after;
+  }
+  return list;
 }
 
 // Parses attribute `name` as `count` finite numbers; returns false when absent.
@@ -62,16 +79,21 @@ bool NumbersAttribute(const XMLElement* element, const char* name, std::size_t c
   return true;
 }
 
-void RequirePositive(const XMLElement* element, const char* name, std::size_t count) {
+// `count` numbers of attribute `name`, each > 0 (or ≥ 0 with allow_zero); the attribute is
+// required.
+std::vector<double> RequirePositive(const XMLElement* element, const char* name,
+                                    std::size_t count, bool allow_zero = false) {
   std::vector<double> values;
   if (!NumbersAttribute(element, name, count, &values)) {
     Fail(element, std::string("attribute ") + name + " is missing");
   }
   for (double v : values) {
-    if (!(v > 0.0)) {
-      Fail(element, std::string(name) + "=\"" + element->Attribute(name) + "\" must be > 0");
+    if (!(v > 0.0 || (allow_zero && v == 0.0))) {
+      Fail(element, std::string(name) + "=\"" + element->Attribute(name) + "\" must be " +
+                        (allow_zero ? ">= 0" : "> 0"));
     }
   }
+  return values;
 }
 
 // The numeric attributes urdfdom reads, by element name: checked wherever they occur in links and
@@ -140,8 +162,6 @@ const XMLElement* Child(const XMLElement* element, std::initializer_list<const c
   return element;
 }
 
-constexpr double kInf = HUGE_VAL;
-
 // <gazebo reference="link">: surface friction of the link's collisions.
 void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std::string>* warnings) {
   // legacy shortcut <mu1>, still common in URDFs written for Gazebo classic
@@ -164,7 +184,6 @@ void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std:
     if (const XMLElement* torsional = friction->FirstChildElement("torsional")) {
       if (const XMLElement* c = torsional->FirstChildElement("coefficient")) {
         surface->torsional_coefficient = TextNumber(c, 0.0, kInf, ">= 0");
-        surface->has_torsional_coefficient = true;
       }
       if (const XMLElement* r = torsional->FirstChildElement("patch_radius")) {
         surface->patch_radius = TextNumber(r, 0.0, kInf, ">= 0");
@@ -177,6 +196,111 @@ void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std:
                               "using patch_radius");
         }
       }
+    }
+  }
+}
+
+// Typos are errors: every attribute of `element` must be one of `allowed`.
+void RequireOnlyAttributes(const XMLElement* element, const Names& allowed) {
+  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
+    bool known = false;
+    for (const std::string& name : allowed) known = known || a->Name() == name;
+    if (!known) {
+      Fail(element, "unknown attribute \"" + std::string(a->Name()) + "\"; allowed: " +
+                        (allowed.size() == 0 ? std::string("none") : Join(allowed, "", "")));
+    }
+  }
+}
+
+void RequireNoChildren(const XMLElement* element) {
+  if (const XMLElement* child = element->FirstChildElement()) {
+    Fail(child, "unknown element <" + std::string(child->Name()) + ">; <" + element->Name() +
+                    "> has no child elements");
+  }
+}
+
+// <collision name="c"> inside <nonsmooth_sim>: exactly one shape URDF cannot express.
+ShapeOverride ReadShapeOverride(const XMLElement* collision) {
+  static const Names kShapes = {
+      "ellipsoid semi_axes=\"a b c\"", "capsule radius=\"r\" length=\"l\"", "plane"};
+  RequireOnlyAttributes(collision, {"name"});
+  const char* name = collision->Attribute("name");
+  if (name == nullptr || *name == '\0') {
+    Fail(collision, "attribute name (the name of one of the link's <collision>s) is missing");
+  }
+  const XMLElement* element = collision->FirstChildElement();
+  if (element == nullptr) {
+    Fail(collision, "no shape; expected one of " + Join(kShapes, "<", "/>"));
+  }
+  if (const XMLElement* second = element->NextSiblingElement()) {
+    Fail(second, "a second shape; expected exactly one of " + Join(kShapes, "<", "/>"));
+  }
+  RequireNoChildren(element);
+  ShapeOverride result;
+  result.where = DescribeWithLine(element);
+  const std::string tag = element->Name();
+  if (tag == "ellipsoid") {
+    RequireOnlyAttributes(element, {"semi_axes"});
+    const std::vector<double> axes = RequirePositive(element, "semi_axes", 3);
+    result.shape = Shape::Ellipsoid(Eigen::Vector3d(axes[0], axes[1], axes[2]));
+  } else if (tag == "capsule") {
+    RequireOnlyAttributes(element, {"radius", "length"});
+    const double radius = RequirePositive(element, "radius", 1)[0];
+    // length of the segment between the centres of the end caps (0: a sphere)
+    const double length = RequirePositive(element, "length", 1, /*allow_zero=*/true)[0];
+    result.shape = Shape::Capsule(radius, 0.5 * length);
+  } else if (tag == "plane") {
+    RequireOnlyAttributes(element, {});
+    result.shape = Shape::Plane();
+  } else {
+    Fail(element, "unknown shape <" + tag + ">; allowed: " + Join(kShapes, "<", "/>") +
+                      " (sphere, box and cylinder: use the URDF <geometry>)");
+  }
+  return result;
+}
+
+// <nonsmooth_sim reference="link">: restitution, friction set and shape overrides of one link.
+void ReadNonsmoothSim(const XMLElement* block, UrdfXml* result) {
+  static const Names kElements = {
+      "restitution", "friction_set", "collision name=\"...\""};
+  RequireOnlyAttributes(block, {"reference"});
+  const char* ref = block->Attribute("reference");
+  if (ref == nullptr) Fail(block, "attribute reference (a link name) is missing");
+  result->extension_blocks.push_back({ref, DescribeWithLine(block)});
+  LinkSurface& surface = result->surfaces[ref];
+  bool has_restitution = false;
+  bool has_friction_set = false;
+  for (const XMLElement* e = block->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "restitution" || tag == "friction_set") {
+      RequireOnlyAttributes(e, {});
+      RequireNoChildren(e);
+      bool& seen = tag == "restitution" ? has_restitution : has_friction_set;
+      if (seen) Fail(e, "<" + tag + "> given twice in one block");
+      seen = true;
+    }
+    if (tag == "restitution") {
+      surface.restitution = TextNumber(e, 0.0, 1.0, "[0, 1]");
+    } else if (tag == "friction_set") {
+      const std::vector<std::string> tokens = Tokens(e->GetText() != nullptr ? e->GetText() : "");
+      const std::optional<FrictionSet> set =
+          tokens.size() == 1 ? FrictionSetFromName(tokens[0]) : std::nullopt;
+      if (!set) {
+        Fail(e, "\"" + std::string(e->GetText() != nullptr ? e->GetText() : "") +
+                    "\" is not a friction set; allowed: " + FrictionSetNameList());
+      }
+      surface.friction_set = *set;
+    } else if (tag == "collision") {
+      const ShapeOverride shape = ReadShapeOverride(e);
+      const auto [it, inserted] =
+          result->shapes[ref].emplace(e->Attribute("name"), shape);
+      if (!inserted) {
+        Fail(e, "a shape for this collision is already given at " + it->second.where);
+      }
+    } else {
+      Fail(e, "unknown element <" + tag + ">; allowed in <nonsmooth_sim>: " +
+                  Join(kElements, "<", ">"));
     }
   }
 }
@@ -206,23 +330,23 @@ UrdfXml ParseUrdfXml(const std::string& xml) {
        e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
     if (tag == "link" || tag == "joint") CheckNumbers(e);
+    if (tag == "link" && e->Attribute("name") != nullptr) {
+      result.link_order.push_back(e->Attribute("name"));
+    }
   }
   // extension tags, by link name (several blocks for one link merge, later ones win)
   for (const XMLElement* e = robot->FirstChildElement("gazebo"); e != nullptr;
        e = e->NextSiblingElement("gazebo")) {
     if (const char* ref = e->Attribute("reference")) {
+      result.gazebo_references.push_back(ref);
       ReadGazebo(e, &result.surfaces[ref], &result.warnings);
     }
   }
   for (const XMLElement* e = robot->FirstChildElement("nonsmooth_sim"); e != nullptr;
        e = e->NextSiblingElement("nonsmooth_sim")) {
-    const char* ref = e->Attribute("reference");
-    if (ref == nullptr) Fail(e, "attribute reference (a link name) is missing");
-    if (const XMLElement* r = e->FirstChildElement("restitution")) {
-      result.surfaces[ref].restitution = TextNumber(r, 0.0, 1.0, "[0, 1]");
-    }
+    ReadNonsmoothSim(e, &result);
   }
   return result;
 }
 
-}  // namespace nonsmooth_sim::node
+}  // namespace nonsmooth_sim::scene_io

@@ -1,0 +1,92 @@
+// Narrow phase: ns per call of each pair function at a representative pose (the shapes touching
+// with a small penetration, in general position), the closed forms and the FCL pairs.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+
+#include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
+#include "nonsmooth_sim/core/collision/capsule_capsule.h"
+#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/plane_box.h"
+#include "nonsmooth_sim/core/collision/plane_capsule.h"
+#include "nonsmooth_sim/core/collision/plane_cylinder.h"
+#include "nonsmooth_sim/core/collision/plane_ellipsoid.h"
+#include "nonsmooth_sim/core/collision/plane_sphere.h"
+#include "nonsmooth_sim/core/collision/sphere_box.h"
+#include "nonsmooth_sim/core/collision/sphere_capsule.h"
+#include "nonsmooth_sim/core/collision/sphere_sphere.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+// A pose tilted about a general axis, centre at `centre`.
+Eigen::Isometry3d TiltedPose(const Eigen::Vector3d& centre, double angle) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  pose.translation() = centre;
+  return pose;
+}
+
+Shape Example(ShapeType type) {
+  switch (type) {
+    case ShapeType::kPlane: return Shape::Plane();
+    case ShapeType::kSphere: return Shape::Sphere(0.1);
+    case ShapeType::kCapsule: return Shape::Capsule(0.05, 0.1);
+    case ShapeType::kEllipsoid: return Shape::Ellipsoid({0.12, 0.08, 0.05});
+    case ShapeType::kCylinder: return Shape::Cylinder(0.08, 0.05);
+    case ShapeType::kBox: return Shape::Box({0.1, 0.07, 0.05});
+  }
+  return Shape::Sphere(0.1);
+}
+
+// One call of `function` on shapes a, b: A at the origin (tilted unless a plane), B above it at
+// the height where the two (nearly) touch along z, found from the bounding radii and a margin
+// large enough that every pair returns its contacts.
+void BM_Pair(benchmark::State& state, ShapeType type_a, ShapeType type_b,
+             CollideFunction function) {
+  const Shape a = Example(type_a);
+  const Shape b = Example(type_b);
+  const Eigen::Isometry3d pose_a =
+      type_a == ShapeType::kPlane ? Eigen::Isometry3d::Identity() : TiltedPose({0, 0, 0}, 0.4);
+  const double height = type_a == ShapeType::kPlane ? 0.9 * BoundingRadius(b)
+                                                    : 0.8 * (BoundingRadius(a) + BoundingRadius(b));
+  const Eigen::Isometry3d pose_b = TiltedPose({0.01, 0.02, height}, 1.1);
+  constexpr double kMargin = 0.05;
+  ContactGeometry out[kMaxPairContacts];
+  int contacts = 0;
+  for (auto _ : state) {
+    contacts = function(a, pose_a, b, pose_b, kMargin, out);
+    benchmark::DoNotOptimize(out);
+  }
+  state.counters["contacts"] = contacts;
+}
+
+#define NONSMOOTH_SIM_PAIR_BENCH(name, a, b, function) \
+  BENCHMARK_CAPTURE(BM_Pair, name, ShapeType::a, ShapeType::b, &function)
+
+NONSMOOTH_SIM_PAIR_BENCH(plane_sphere, kPlane, kSphere, CollidePlaneSphere);
+NONSMOOTH_SIM_PAIR_BENCH(plane_capsule, kPlane, kCapsule, CollidePlaneCapsule);
+NONSMOOTH_SIM_PAIR_BENCH(plane_ellipsoid, kPlane, kEllipsoid, CollidePlaneEllipsoid);
+NONSMOOTH_SIM_PAIR_BENCH(plane_cylinder, kPlane, kCylinder, CollidePlaneCylinder);
+NONSMOOTH_SIM_PAIR_BENCH(plane_box, kPlane, kBox, CollidePlaneBox);
+NONSMOOTH_SIM_PAIR_BENCH(sphere_sphere, kSphere, kSphere, CollideSphereSphere);
+NONSMOOTH_SIM_PAIR_BENCH(sphere_capsule, kSphere, kCapsule, CollideSphereCapsule);
+NONSMOOTH_SIM_PAIR_BENCH(sphere_box, kSphere, kBox, CollideSphereBox);
+NONSMOOTH_SIM_PAIR_BENCH(capsule_capsule, kCapsule, kCapsule, CollideCapsuleCapsule);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_sphere_ellipsoid, kSphere, kEllipsoid, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_sphere_cylinder, kSphere, kCylinder, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_capsule_ellipsoid, kCapsule, kEllipsoid, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_capsule_cylinder, kCapsule, kCylinder, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_capsule_box, kCapsule, kBox, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_ellipsoid_ellipsoid, kEllipsoid, kEllipsoid, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_ellipsoid_cylinder, kEllipsoid, kCylinder, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_ellipsoid_box, kEllipsoid, kBox, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_cylinder_cylinder, kCylinder, kCylinder, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_cylinder_box, kCylinder, kBox, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_box_box, kBox, kBox, CollideFcl);
+// FCL on pairs that have a closed form, for comparison
+NONSMOOTH_SIM_PAIR_BENCH(fcl_sphere_sphere, kSphere, kSphere, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_capsule_capsule, kCapsule, kCapsule, CollideFcl);
+
+}  // namespace
+}  // namespace nonsmooth_sim

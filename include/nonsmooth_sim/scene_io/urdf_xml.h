@@ -1,0 +1,67 @@
+// The XML side of the URDF loader (TinyXML2): well-formedness, strict numbers everywhere, and the
+// extension tags urdfdom ignores: Gazebo's <gazebo reference="link"> surface friction and our
+// <nonsmooth_sim reference="link"> block (restitution, friction set, shapes URDF cannot express).
+// See urdf_scene.h for the rules and docs/urdf.md for the user's view.
+#ifndef NONSMOOTH_SIM_SCENE_IO_URDF_XML_H_
+#define NONSMOOTH_SIM_SCENE_IO_URDF_XML_H_
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "nonsmooth_sim/core/force_sets.h"
+#include "nonsmooth_sim/core/shape.h"
+
+namespace nonsmooth_sim::scene_io {
+
+/// Contact parameters of one link's collisions, with SDF's defaults where a tag is absent.
+struct LinkSurface {
+  double mu = 1.0;                     ///< ode/mu (SDF default 1), ≥ 0
+  double torsional_coefficient = 1.0;  ///< torsional/coefficient μ_τ (SDF default 1), ≥ 0
+  double patch_radius = 0.0;           ///< torsional/patch_radius R [m] (SDF default 0), ≥ 0
+  double restitution = 0.0;            ///< ε of (14), in [0, 1]
+  /// <nonsmooth_sim><friction_set>; unset: the loader option UrdfSceneOptions::friction_set
+  std::optional<FrictionSet> friction_set;
+};
+
+/// <nonsmooth_sim reference="link"><collision name="c"><ellipsoid|capsule|plane .../></collision>:
+/// a shape that replaces the URDF geometry of the link's collision "c" (its <origin> is kept).
+struct ShapeOverride {
+  Shape shape;
+  /// The element, for error lines: nonsmooth_sim reference="b" > collision "c" > plane (line 7)
+  std::string where;
+};
+
+/// One <nonsmooth_sim reference=...> block, for the checks that need the model (does the link
+/// exist).
+struct ExtensionBlock {
+  std::string link;
+  std::string where;  ///< nonsmooth_sim reference="b" (line 3)
+};
+
+struct UrdfXml {
+  std::vector<std::string> link_order;          ///< <link name> in document order
+  std::map<std::string, LinkSurface> surfaces;  ///< by link name; absent = defaults
+  /// by link name, then collision name
+  std::map<std::string, std::map<std::string, ShapeOverride>> shapes;
+  std::vector<ExtensionBlock> extension_blocks;  ///< every <nonsmooth_sim> block
+  std::vector<std::string> gazebo_references;    ///< every <gazebo reference> (links or joints)
+  std::vector<std::string> warnings;
+};
+
+/// Parses `xml` and checks it (throws UrdfError, see urdf_scene.h): well-formed XML with a <robot>
+/// root; every numeric attribute of links and joints made of finite numbers (the count each URDF
+/// attribute needs); masses, sphere/cylinder radii, lengths and box sizes > 0; every <inertial>
+/// with a <mass> and an <inertia>; Gazebo friction values finite and ≥ 0; the <nonsmooth_sim>
+/// blocks strictly: known elements and attributes only, values in range, shapes not degenerate.
+/// Returns the extension data.
+UrdfXml ParseUrdfXml(const std::string& xml);
+
+/// Parses one number exactly (no trailing characters, finite); false otherwise.
+bool ParseFiniteNumber(std::string_view text, double* value);
+
+}  // namespace nonsmooth_sim::scene_io
+
+#endif  // NONSMOOTH_SIM_SCENE_IO_URDF_XML_H_

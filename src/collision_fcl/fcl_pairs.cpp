@@ -1,0 +1,334 @@
+// FCL-based pair functions: shapes mapped to FCL geometries on the stack, FCL's contacts and
+// nearest points mapped to ContactGeometry, MPR's penetration refined by separated distances
+// (fcl_pairs.h).
+#include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "nonsmooth_sim/core/collision/closest_points.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+// A contact normal shorter than this is FCL's zero normal of exactly touching shapes.
+constexpr double kFclMinNormalNorm = 0.5;
+// GJK's stopping tolerance of the distance queries (FCL's own GJK, GST_INDEP): the distance is
+// then exact to ~1e-9 m at the sizes of the tests, against ~1e-6 m with FCL's default 1e-6.
+constexpr double kDistanceTolerance = 1e-13;
+// Fixed-point iterations of the refinement, and their stopping rules: |n_{k+1} − n_k| (GJK's
+// nearest points jitter the normal at ~1e-6 at a separation ε) or the gain in PG(n_k) [m].
+constexpr int kMaxRefinements = 8;
+constexpr double kRefinedNormalChange = 1e-6;
+constexpr double kRefinedGapChange = 1e-13;
+// |n_i − n| up to which FCL's box–box contact normal is the refined normal n (both are then the
+// same face normal, to round-off and GJK's error).
+constexpr double kManifoldNormalTolerance = 1e-6;
+
+// FCL's lengths: full cylinder/capsule length lz = 2l, full box sides 2h.
+using FclGeometry = std::variant<std::monostate, fcl::Sphered, fcl::Capsuled, fcl::Ellipsoidd,
+                                 fcl::Cylinderd, fcl::Boxd>;
+
+void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
+  switch (shape.type) {
+    case ShapeType::kPlane: return;
+    case ShapeType::kSphere: geometry->emplace<fcl::Sphered>(shape.radius); return;
+    case ShapeType::kCapsule:
+      geometry->emplace<fcl::Capsuled>(shape.radius, 2.0 * shape.half_length);
+      return;
+    case ShapeType::kEllipsoid: geometry->emplace<fcl::Ellipsoidd>(shape.half_extents); return;
+    case ShapeType::kCylinder:
+      geometry->emplace<fcl::Cylinderd>(shape.radius, 2.0 * shape.half_length);
+      return;
+    case ShapeType::kBox: geometry->emplace<fcl::Boxd>(2.0 * shape.half_extents); return;
+  }
+}
+
+const fcl::CollisionGeometryd* Pointer(const FclGeometry& geometry) {
+  return std::visit(
+      [](const auto& g) -> const fcl::CollisionGeometryd* {
+        if constexpr (std::is_same_v<std::decay_t<decltype(g)>, std::monostate>) {
+          return nullptr;
+        } else {
+          return &g;
+        }
+      },
+      geometry);
+}
+
+// True for the pairs FCL collides by a formula of its own (exact), not by MPR.
+bool FclHasExactPenetration(ShapeType a, ShapeType b) {
+  if (a > b) std::swap(a, b);
+  return (a == ShapeType::kSphere && b == ShapeType::kCylinder) ||
+         (a == ShapeType::kBox && b == ShapeType::kBox);
+}
+
+// Support point of the solid shape in the world direction d (unit): the point maximising d·x.
+Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose,
+                        const Eigen::Vector3d& d_world) {
+  const Eigen::Vector3d d = pose.linear().transpose() * d_world;
+  const auto sign = [](double x) { return x >= 0.0 ? 1.0 : -1.0; };
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  switch (shape.type) {
+    case ShapeType::kPlane: break;
+    case ShapeType::kSphere: x = shape.radius * d; break;
+    case ShapeType::kCapsule: x = shape.radius * d + sign(d.z()) * shape.half_length * Eigen::Vector3d::UnitZ(); break;
+    case ShapeType::kEllipsoid: {
+      // S² d/|S d| (plane_ellipsoid.h)
+      const Eigen::Vector3d s_d = shape.half_extents.cwiseProduct(d);
+      x = shape.half_extents.cwiseProduct(s_d) / s_d.norm();
+      break;
+    }
+    case ShapeType::kCylinder: {
+      const double rho = d.head<2>().norm();
+      if (rho > 0.0) x.head<2>() = (shape.radius / rho) * d.head<2>();
+      x.z() = sign(d.z()) * shape.half_length;
+      break;
+    }
+    case ShapeType::kBox:
+      for (int j = 0; j < 3; ++j) x[j] = sign(d[j]) * shape.half_extents[j];
+      break;
+  }
+  return pose * x;
+}
+
+// Gap along the unit direction n: min over B of n·x − max over A of n·y. A lower bound of the
+// signed distance for every n, equal to it for the optimal n.
+double ProjectionGap(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                     const Eigen::Isometry3d& pose_b, const Eigen::Vector3d& n) {
+  return n.dot(Support(b, pose_b, -n)) - n.dot(Support(a, pose_a, n));
+}
+
+struct Distance {
+  double distance = 0.0;
+  Eigen::Vector3d point_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point_b = Eigen::Vector3d::Zero();
+};
+
+// GJK distance with nearest points (world) of separated shapes; FCL's GJK, tolerance above.
+Distance FclDistance(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& pose_a,
+                     const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& pose_b) {
+  const fcl::DistanceRequestd request(/*enable_nearest_points=*/true,
+                                      /*enable_signed_distance=*/false, /*rel_err=*/0.0,
+                                      /*abs_err=*/0.0, kDistanceTolerance, fcl::GST_INDEP);
+  fcl::DistanceResultd result;
+  fcl::distance(a, pose_a, b, pose_b, request, result);
+  return {result.min_distance, result.nearest_points[0], result.nearest_points[1]};
+}
+
+// ε of the refinement [m]: large against GJK's error in the nearest points, small against the
+// shapes.
+double RefinementSeparation(const Shape& a, const Shape& b) {
+  return kFclRefinementSeparation * std::min(BoundingRadius(a), BoundingRadius(b));
+}
+
+// The fixed point of RefinedContact from one start n₀: the iterate with the largest PG (each
+// PG(n_k) is a lower bound of the signed distance).
+ContactGeometry RefineFrom(const Shape& a, const Eigen::Isometry3d& pose_a,
+                           const fcl::CollisionGeometryd* fcl_a, const Shape& b,
+                           const Eigen::Isometry3d& pose_b, const fcl::CollisionGeometryd* fcl_b,
+                           Eigen::Vector3d n, double separation) {
+  ContactGeometry best;
+  best.gap = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kMaxRefinements; ++k) {
+    // move B along n_k until PG(n_k) = ε, then GJK on the separated shapes
+    const double gap = ProjectionGap(a, pose_a, b, pose_b, n);
+    // converged: the gap no longer improves (it is stationary in n: an error δ in n moves it
+    // by O(δ²), so this stops long before n stops jittering at GJK's error)
+    if (gap <= best.gap + kRefinedGapChange) break;
+    const Eigen::Vector3d shift = (separation - gap) * n;
+    const Distance nearest =
+        FclDistance(fcl_a, pose_a, fcl_b, Eigen::Translation3d(shift) * pose_b);
+    if (gap > best.gap) {
+      best.normal = n;
+      best.gap = gap;
+      best.point_b = nearest.point_b - shift;
+      best.point_a = best.point_b - gap * n;
+    }
+    // n_{k+1} = (p_b − p_a)/|p_b − p_a| (n_k if GJK found no direction)
+    const Eigen::Vector3d next = NormalizedOr(nearest.point_b - nearest.point_a, n);
+    if ((next - n).norm() <= kRefinedNormalChange) break;
+    n = next;
+  }
+  return best;
+}
+
+// The contact of shapes that penetrate or nearly touch, from a guess of its normal.
+// Fixed point: move B along n_k until its gap along n_k is ε (by s = ε − PG(n_k)), take the
+// normal of the now separated shapes from GJK's nearest points, n_{k+1} = (p_b − p_a)/|p_b − p_a|.
+// At a fixed point n* B was moved along the normal of the deepest points, which keeps them the
+// nearest points: gap = PG(n*), point_b = p_b − s n*. Started from the guess and from the best
+// face normal (a box's axes, a cylinder's axis: where flat faces touch, the least penetration is
+// along one of them); the start with the larger PG at its fixed point wins.
+ContactGeometry RefinedContact(const Shape& a, const Eigen::Isometry3d& pose_a,
+                               const fcl::CollisionGeometryd* fcl_a, const Shape& b,
+                               const Eigen::Isometry3d& pose_b,
+                               const fcl::CollisionGeometryd* fcl_b, const Eigen::Vector3d& guess) {
+  const double separation = RefinementSeparation(a, b);
+  ContactGeometry best = RefineFrom(a, pose_a, fcl_a, b, pose_b, fcl_b, guess, separation);
+  double face_gap = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d face_normal = Eigen::Vector3d::Zero();
+  const auto consider = [&](const Eigen::Vector3d& n) {
+    const double gap = ProjectionGap(a, pose_a, b, pose_b, n);
+    if (gap > face_gap) face_gap = gap, face_normal = n;
+  };
+  for (const auto& [shape, pose] : {std::pair{&a, &pose_a}, std::pair{&b, &pose_b}}) {
+    // a box's three axes, a cylinder's axis, both ways
+    if (shape->type != ShapeType::kBox && shape->type != ShapeType::kCylinder) continue;
+    for (int j = shape->type == ShapeType::kBox ? 0 : 2; j < 3; ++j) {
+      consider(pose->linear().col(j));
+      consider(-pose->linear().col(j));
+    }
+  }
+  // a cylinder's barrel normal at the other shape's point deepest in it (along the guess)
+  const auto barrel = [&](const Shape& cylinder, const Eigen::Isometry3d& pose,
+                          const Eigen::Vector3d& deepest, double sign) {
+    const Eigen::Vector3d axis = pose.linear().col(2);
+    const Eigen::Vector3d r = deepest - pose.translation();
+    const Eigen::Vector3d radial = r - axis.dot(r) * axis;
+    if (cylinder.type == ShapeType::kCylinder && radial.norm() > 0.0) {
+      consider(sign * radial.normalized());
+    }
+  };
+  barrel(a, pose_a, Support(b, pose_b, -guess), 1.0);
+  barrel(b, pose_b, Support(a, pose_a, guess), -1.0);
+  if (face_gap > -std::numeric_limits<double>::infinity()) {
+    const ContactGeometry from_face =
+        RefineFrom(a, pose_a, fcl_a, b, pose_b, fcl_b, face_normal, separation);
+    if (from_face.gap > best.gap) best = from_face;
+  }
+  return best;
+}
+
+// Box–box separated by less than the margin, or exactly touching, with the contact c: FCL's
+// clipping on B moved into A by s = gap + ε along n (penetrating by ε), moved back. A box resting
+// on a box then has its four corners (or its clipped face) as contacts before it touches, as
+// after: gap_i = −depth_i + s (n_i·n), point_b_i = p_i − (depth_i/2) n_i + s n. Contacts whose
+// normal is not n (FCL chose another axis) are not used; without any, c alone.
+int BoxBoxManifold(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& pose_a,
+                   const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& pose_b,
+                   const ContactGeometry& c, double separation, double margin,
+                   ContactGeometry* out) {
+  const double s = c.gap + separation;
+  const fcl::CollisionRequestd request(/*num_max_contacts=*/kMaxPairContacts,
+                                       /*enable_contact=*/true);
+  fcl::CollisionResultd result;
+  fcl::collide(a, pose_a, b, Eigen::Translation3d(-s * c.normal) * pose_b, request, result);
+  const int found = std::min<int>(static_cast<int>(result.numContacts()), kMaxPairContacts);
+  int count = 0;
+  for (int i = 0; i < found; ++i) {
+    const fcl::Contactd& contact = result.getContact(i);
+    // only the clipping along c's normal (FCL may pick another axis for a corner or an edge)
+    if (!((contact.normal - c.normal).norm() <= kManifoldNormalTolerance)) continue;
+    ContactGeometry& m = out[count];
+    m = ContactGeometry{};
+    m.normal = contact.normal.normalized();
+    m.gap = -contact.penetration_depth + s * m.normal.dot(c.normal);
+    m.point_b = contact.pos - 0.5 * contact.penetration_depth * m.normal + s * c.normal;
+    m.point_a = m.point_b - m.gap * m.normal;
+    m.feature = i;
+    if (m.gap <= margin) ++count;
+  }
+  if (count > 0) return count;
+  out[0] = c;
+  return 1;
+}
+
+}  // namespace
+
+int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+               const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out) {
+  FclGeometry geometry_a;
+  FclGeometry geometry_b;
+  MakeGeometry(a, &geometry_a);
+  MakeGeometry(b, &geometry_b);
+  const fcl::CollisionGeometryd* fcl_a = Pointer(geometry_a);
+  const fcl::CollisionGeometryd* fcl_b = Pointer(geometry_b);
+  if (fcl_a == nullptr || fcl_b == nullptr) return 0;
+  const Eigen::Vector3d centre_line =
+      NormalizedOr(pose_b.translation() - pose_a.translation(), DegenerateNormal());
+  const double separation = RefinementSeparation(a, b);
+
+  // penetrating: FCL's contacts
+  const fcl::CollisionRequestd request(/*num_max_contacts=*/kMaxPairContacts,
+                                       /*enable_contact=*/true);
+  fcl::CollisionResultd result;
+  fcl::collide(fcl_a, pose_a, fcl_b, pose_b, request, result);
+  const int count = std::min<int>(static_cast<int>(result.numContacts()), kMaxPairContacts);
+  if (count > 0) {
+    bool exact = FclHasExactPenetration(a.type, b.type);
+    for (int i = 0; i < count; ++i) {
+      exact = exact && result.getContact(i).normal.norm() > kFclMinNormalNorm;
+    }
+    if (exact) {
+      // gap = −depth, points p ± (depth/2) n
+      for (int i = 0; i < count; ++i) {
+        const fcl::Contactd& contact = result.getContact(i);
+        const double depth = contact.penetration_depth;
+        ContactGeometry& c = out[i];
+        c = ContactGeometry{};
+        c.normal = contact.normal.normalized();
+        c.gap = -depth;
+        c.point_a = contact.pos + 0.5 * depth * c.normal;
+        c.point_b = contact.pos - 0.5 * depth * c.normal;
+        c.feature = i;
+      }
+      return count;
+    }
+  } else if (margin < 0.0) {
+    return 0;
+  }
+
+  ContactGeometry c;
+  if (count > 0) {
+    // MPR (or a zero normal): refined from MPR's normal, or the line of centres
+    const Eigen::Vector3d& mpr = result.getContact(0).normal;
+    c = RefinedContact(a, pose_a, fcl_a, b, pose_b, fcl_b,
+                       mpr.norm() > kFclMinNormalNorm ? Eigen::Vector3d(mpr.normalized())
+                                                      : centre_line);
+  } else {
+    // separated: GJK's nearest points; refined where too close to give a direction
+    const Distance nearest = FclDistance(fcl_a, pose_a, fcl_b, pose_b);
+    if (nearest.distance > margin) return 0;
+    if (nearest.distance > separation) {
+      c.point_a = nearest.point_a;
+      c.point_b = nearest.point_b;
+      c.gap = (c.point_b - c.point_a).norm();
+      c.normal = (c.point_b - c.point_a) / c.gap;
+    } else {
+      c = RefinedContact(a, pose_a, fcl_a, b, pose_b, fcl_b,
+                         NormalizedOr(nearest.point_b - nearest.point_a, centre_line));
+    }
+    if (!(c.gap <= margin)) return 0;
+  }
+  if (a.type == ShapeType::kBox && b.type == ShapeType::kBox) {
+    return BoxBoxManifold(fcl_a, pose_a, fcl_b, pose_b, c, separation, margin, out);
+  }
+  out[0] = c;
+  return 1;
+}
+
+void RegisterFclPairs() {
+  constexpr ShapeType kPairs[][2] = {
+      {ShapeType::kSphere, ShapeType::kEllipsoid},    {ShapeType::kSphere, ShapeType::kCylinder},
+      {ShapeType::kCapsule, ShapeType::kEllipsoid},   {ShapeType::kCapsule, ShapeType::kCylinder},
+      {ShapeType::kCapsule, ShapeType::kBox},         {ShapeType::kEllipsoid, ShapeType::kEllipsoid},
+      {ShapeType::kEllipsoid, ShapeType::kCylinder},  {ShapeType::kEllipsoid, ShapeType::kBox},
+      {ShapeType::kCylinder, ShapeType::kCylinder},   {ShapeType::kCylinder, ShapeType::kBox},
+      {ShapeType::kBox, ShapeType::kBox}};
+  for (const auto& pair : kPairs) RegisterCollideFunction(pair[0], pair[1], &CollideFcl);
+}
+
+}  // namespace nonsmooth_sim

@@ -1,0 +1,298 @@
+// Contacts of a step, see simulator.h: the index set (12) at q_M through the broad phase and the
+// collision table, the islands of bodies the closed contacts link, and the gap correction at q_E.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "nonsmooth_sim/core/contact/contact_frame.h"
+#include "nonsmooth_sim/core/simulator.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+// Key of a contact's memory: (first collider, second collider, feature) in 24 + 24 + 16 bits.
+std::uint64_t ContactKey(int first, int second, int feature) {
+  return (static_cast<std::uint64_t>(first) << 40) | (static_cast<std::uint64_t>(second) << 16) |
+         static_cast<std::uint64_t>(feature & 0xffff);
+}
+
+// Union-find root with path halving.
+int Root(std::vector<int>* parent, int b) {
+  std::vector<int>& p = *parent;
+  while (p[static_cast<std::size_t>(b)] != b) {
+    p[static_cast<std::size_t>(b)] = p[static_cast<std::size_t>(p[static_cast<std::size_t>(b)])];
+    b = p[static_cast<std::size_t>(b)];
+  }
+  return b;
+}
+
+}  // namespace
+
+Eigen::Isometry3d Simulator::ColliderPose(int collider, bool end) const {
+  const Collider& c = scene_.colliders[static_cast<std::size_t>(collider)];
+  if (c.body == kWorld) return c.pose;
+  const BodyStep& w = body_step_[static_cast<std::size_t>(c.body)];
+  const Eigen::Matrix3d& rotation = end ? w.rotation_end : w.rotation_mid;
+  const Eigen::Vector3d& position =
+      end ? state_[static_cast<std::size_t>(c.body)].position : w.position_mid;
+  // (A, r_S) ∘ pose, written out: Eigen's Transform product multiplies the full 4 × 4 matrices
+  Eigen::Isometry3d pose;
+  pose.matrix().row(3) << 0.0, 0.0, 0.0, 1.0;
+  if (collider_rotated_[static_cast<std::size_t>(collider)]) {
+    pose.linear().noalias() = rotation * c.pose.linear();
+  } else {
+    pose.linear() = rotation;  // a sphere at an offset, a shape in the body's axes
+  }
+  pose.translation().noalias() = rotation * c.pose.translation();
+  pose.translation() += position;
+  return pose;
+}
+
+void Simulator::FindContacts(StepStatistics* stats) {
+  closed_.clear();
+  pairs_.clear();
+  spheres_.clear();
+  // broad phase: every body collider against every static plane, the rest by sweep and prune
+  for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
+    const Collider& c = scene_.colliders[i];
+    if (c.shape.type == ShapeType::kPlane) continue;
+    if (c.body != kWorld) collider_pose_[i] = ColliderPose(static_cast<int>(i), false);
+    const Eigen::Vector3d center = collider_pose_[i].translation();
+    const double radius = BoundingRadius(c.shape);
+    if (c.body != kWorld) {
+      for (int p : planes_) {
+        const Eigen::Isometry3d& plane = scene_.colliders[static_cast<std::size_t>(p)].pose;
+        // height of the centre above the plane z = 0 of the plane frame
+        const double height = plane.linear().col(2).dot(center - plane.translation());
+        if (height <= radius) {
+          pairs_.emplace_back(std::min(static_cast<int>(i), p), std::max(static_cast<int>(i), p));
+        }
+      }
+    }
+    if (needs_sweep_) spheres_.push_back(BoundingSphere{center, radius, static_cast<int>(i), c.body});
+  }
+  if (needs_sweep_) SweepAndPrune(&spheres_, &pairs_);
+  // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep)
+  std::sort(pairs_.begin(), pairs_.end());
+  for (const auto& [first, second] : pairs_) AddPairContacts(first, second);
+  stats->closed_contacts = static_cast<int>(closed_.size());
+}
+
+void Simulator::AddPairContacts(int first, int second) {
+  // A is the static collider if there is one, else the first
+  int a = first;
+  int b = second;
+  if (scene_.colliders[static_cast<std::size_t>(b)].body == kWorld) std::swap(a, b);
+  const Collider& collider_a = scene_.colliders[static_cast<std::size_t>(a)];
+  const Collider& collider_b = scene_.colliders[static_cast<std::size_t>(b)];
+  const Eigen::Isometry3d& pose_a = collider_pose_[static_cast<std::size_t>(a)];
+  const Eigen::Isometry3d& pose_b = collider_pose_[static_cast<std::size_t>(b)];
+  ContactGeometry geometry[kMaxPairContacts];
+  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b, 0.0, geometry);
+  if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
+  const ContactLaw law = PairLaw(first, second);
+  // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
+  const Eigen::Vector3d hint = collider_a.shape.type == ShapeType::kPlane
+                                   ? Eigen::Vector3d(pose_a.linear().col(0))
+                                   : Eigen::Vector3d::UnitX();
+  for (int k = 0; k < count; ++k) {
+    const ContactGeometry& g = geometry[k];
+    if (g.gap > 0.0) continue;  // (12): g(q_M) ≤ 0
+    ClosedContact& c = closed_.emplace_back();
+    c.key = ContactKey(first, second, g.feature);
+    // the (pair, feature)'s memory, created on first contact (the only allocation of a step)
+    const auto [memory, created] = memory_.try_emplace(c.key);
+    c.memory = &memory->second;
+    const Eigen::Vector3d* previous = created ? nullptr : &c.memory->tangent1;
+    ContactState& r = c.report;
+    r.collider_a = a;
+    r.collider_b = b;
+    r.body_a = collider_a.body;
+    r.body_b = collider_b.body;
+    r.feature = g.feature;
+    r.gap = g.gap;
+    r.point = g.point_b;
+    r.frame = MakeContactFrame(g.normal, previous, hint);
+    r.law = law;
+    // a face lying flat: the drilling radius of its uniform pressure replaces the law's (50)
+    if (g.patch_radius > 0.0) r.law.rbar = g.patch_radius;
+    r.dimension = ContactDimension(r.law);
+    r.percussion.setZero();
+    // W at q_M over B (+) and A (-)
+    c.jacobian.linear = ContactLinearRows(r.frame);
+    c.gamma_begin.setZero();
+    const Eigen::Vector3d* points[2] = {&g.point_b, &g.point_a};
+    const int bodies[2] = {r.body_b, r.body_a};
+    for (int s = 0; s < 2; ++s) {
+      ContactSide& side = c.jacobian.side[s];
+      side.body = bodies[s];
+      side.sign = s == 0 ? 1.0 : -1.0;
+      if (side.body < 0) continue;
+      const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
+      side.angular = ContactAngularRows(r.frame, *points[s], w.position_mid, w.rotation_mid);
+      const BodyState& state = state_[static_cast<std::size_t>(side.body)];
+      // γ^B = W(q_M)ᵀu_B
+      c.gamma_begin += SideVelocity(c.jacobian, side, state.linear_velocity,
+                                    state.angular_velocity);
+    }
+  }
+}
+
+void Simulator::BuildIslands(StepStatistics* stats) {
+  islands_.clear();
+  if (closed_.empty()) return;
+  stats->islands = 1;
+  for (const ClosedContact& c : closed_) {
+    stats->max_penetration = std::max(stats->max_penetration, -c.report.gap);
+  }
+  // one body against the static world (a top on the ground): one island, contacts in order
+  bool single = true;
+  for (const ClosedContact& c : closed_) {
+    single = single && c.report.body_a < 0 && c.report.body_b == closed_[0].report.body_b;
+  }
+  if (single) {
+    islands_.push_back(Island{0, static_cast<int>(closed_.size()), 0});
+    island_contacts_.resize(closed_.size());
+    for (std::size_t i = 0; i < closed_.size(); ++i) {
+      island_contacts_[i] = static_cast<int>(i);
+      closed_[i].offset = islands_[0].size;
+      islands_[0].size += closed_[i].report.dimension;
+    }
+    body_step_[static_cast<std::size_t>(closed_[0].report.body_b)].island = 0;
+    island_bodies_.resize(1);
+    island_bodies_[0] = closed_[0].report.body_b;
+    island_body_start_.resize(2);
+    island_body_start_[0] = 0;
+    island_body_start_[1] = 1;
+    return;
+  }
+  // union-find over the bodies that closed contacts link
+  for (std::size_t b = 0; b < union_find_.size(); ++b) union_find_[b] = static_cast<int>(b);
+  for (const ClosedContact& c : closed_) {
+    if (c.report.body_a < 0) continue;
+    const int ra = Root(&union_find_, c.report.body_a);
+    const int rb = Root(&union_find_, c.report.body_b);
+    if (ra != rb) union_find_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+  }
+  // islands numbered in the order of their first contact; body_step_[root].island holds it
+  for (const ClosedContact& c : closed_) {
+    const int root = Root(&union_find_, c.report.body_b);
+    BodyStep& w = body_step_[static_cast<std::size_t>(root)];
+    if (w.island < 0) {
+      w.island = static_cast<int>(islands_.size());
+      islands_.push_back(Island{});
+    }
+    ++islands_[static_cast<std::size_t>(w.island)].contact_count;
+  }
+  // counting sort of the contacts by island, keeping their order within an island
+  int start = 0;
+  for (Island& island : islands_) {
+    island.first_contact = start;
+    start += island.contact_count;
+    island.contact_count = 0;
+    island.size = 0;
+  }
+  island_contacts_.resize(closed_.size());
+  for (std::size_t i = 0; i < closed_.size(); ++i) {
+    ClosedContact& c = closed_[i];
+    const int root = Root(&union_find_, c.report.body_b);
+    Island& island = islands_[static_cast<std::size_t>(body_step_[static_cast<std::size_t>(root)].island)];
+    island_contacts_[static_cast<std::size_t>(island.first_contact + island.contact_count++)] =
+        static_cast<int>(i);
+    c.offset = island.size;
+    island.size += c.report.dimension;
+  }
+  // every body of an island knows it; the bodies grouped by island
+  for (std::size_t b = 0; b < body_step_.size(); ++b) {
+    const int root = Root(&union_find_, static_cast<int>(b));
+    body_step_[b].island = body_step_[static_cast<std::size_t>(root)].island;
+  }
+  island_body_start_.assign(islands_.size() + 1, 0);
+  for (const BodyStep& w : body_step_) {
+    if (w.island >= 0) ++island_body_start_[static_cast<std::size_t>(w.island) + 1];
+  }
+  for (std::size_t k = 1; k < island_body_start_.size(); ++k) {
+    island_body_start_[k] += island_body_start_[k - 1];
+  }
+  island_bodies_.resize(static_cast<std::size_t>(island_body_start_.back()));
+  std::vector<int>& next = union_find_;  // reused as the fill pointer per island
+  for (std::size_t k = 0; k < islands_.size(); ++k) next[k] = island_body_start_[k];
+  for (std::size_t b = 0; b < body_step_.size(); ++b) {
+    const int island = body_step_[b].island;
+    if (island < 0) continue;
+    island_bodies_[static_cast<std::size_t>(next[static_cast<std::size_t>(island)]++)] =
+        static_cast<int>(b);
+  }
+  stats->islands = static_cast<int>(islands_.size());
+}
+
+void Simulator::CorrectGaps(StepStatistics* stats) {
+  // One record per closed contact, evaluated again at q_E: its group (a body and the static
+  // collider it touches, or a pair of bodies), its end gap and normal. Sorted by group, the
+  // highest gap first: that one decides for the group (two spheres of one body on the ground are
+  // one group).
+  gap_groups_.clear();
+  std::size_t i = 0;
+  while (i < closed_.size()) {
+    // the contacts of one pair are consecutive in closed_
+    std::size_t j = i;
+    while (j < closed_.size() && closed_[j].key >> 16 == closed_[i].key >> 16) ++j;
+    const ContactState& first = closed_[i].report;
+    ContactGeometry end[kMaxPairContacts];
+    const int count = Collide(
+        scene_.colliders[static_cast<std::size_t>(first.collider_a)].shape,
+        ColliderPose(first.collider_a, true),
+        scene_.colliders[static_cast<std::size_t>(first.collider_b)].shape,
+        ColliderPose(first.collider_b, true), 0.0, end);
+    for (std::size_t k = i; k < j; ++k) {
+      const ContactState& r = closed_[k].report;
+      double gap = std::numeric_limits<double>::infinity();  // feature gone: not penetrating
+      Eigen::Vector3d normal = r.frame.normal;
+      for (int e = 0; e < count; ++e) {
+        if (end[e].feature != r.feature) continue;
+        gap = end[e].gap;
+        normal = end[e].normal;
+      }
+      GapGroup& group = gap_groups_.emplace_back();
+      group.body_a = r.body_a;
+      group.body_b = r.body_b;
+      group.static_collider = r.body_a < 0 ? r.collider_a : -1;
+      group.highest_gap = gap;
+      group.normal = normal;
+    }
+    i = j;
+  }
+  // merge the records of one group: the highest end gap decides, with its normal
+  if (gap_groups_.size() > 1) std::sort(gap_groups_.begin(), gap_groups_.end(), [](const GapGroup& x, const GapGroup& y) {
+    if (x.body_b != y.body_b) return x.body_b < y.body_b;
+    if (x.body_a != y.body_a) return x.body_a < y.body_a;
+    if (x.static_collider != y.static_collider) return x.static_collider < y.static_collider;
+    return x.highest_gap > y.highest_gap;
+  });
+  for (std::size_t k = 0; k < gap_groups_.size(); ++k) {
+    const GapGroup& g = gap_groups_[k];
+    if (k > 0 && g.body_b == gap_groups_[k - 1].body_b && g.body_a == gap_groups_[k - 1].body_a &&
+        g.static_collider == gap_groups_[k - 1].static_collider) {
+      continue;  // not the highest of its group
+    }
+    const double depth = -g.highest_gap;
+    if (!(depth > kGapCorrectionSlop)) continue;
+    // translate along the normal to the slop; a pair of bodies shares it by mass
+    const double push = depth - kGapCorrectionSlop;
+    const double mass_b = inertia_[static_cast<std::size_t>(g.body_b)].mass;
+    const double mass_a = g.body_a >= 0 ? inertia_[static_cast<std::size_t>(g.body_a)].mass : 0.0;
+    const double share_b = g.body_a >= 0 ? mass_a / (mass_a + mass_b) : 1.0;
+    const Eigen::Vector3d move_b = (share_b * push) * g.normal;
+    state_[static_cast<std::size_t>(g.body_b)].position += move_b;
+    stats->gap_correction = std::max(stats->gap_correction, move_b.norm());
+    stats->gap_correction_energy -= mass_b * scene_.gravity.dot(move_b);
+    if (g.body_a >= 0) {
+      const Eigen::Vector3d move_a = -((1.0 - share_b) * push) * g.normal;
+      state_[static_cast<std::size_t>(g.body_a)].position += move_a;
+      stats->gap_correction = std::max(stats->gap_correction, move_a.norm());
+      stats->gap_correction_energy -= mass_a * scene_.gravity.dot(move_a);
+    }
+  }
+}
+
+}  // namespace nonsmooth_sim

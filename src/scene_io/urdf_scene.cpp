@@ -1,0 +1,579 @@
+// URDF (urdfdom model + TinyXML2 extension tags) -> core Scene. See urdf_scene.h.
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/scene_io/urdf_xml.h"
+
+namespace nonsmooth_sim::scene_io {
+namespace {
+
+// urdfdom reports through console_bridge and carries on; collect its first error instead of
+// printing it (a library does not print), so that the caller gets one line.
+class UrdfdomErrors : public console_bridge::OutputHandler {
+ public:
+  UrdfdomErrors() : previous_(console_bridge::getOutputHandler()) {
+    console_bridge::useOutputHandler(this);
+  }
+  ~UrdfdomErrors() override { console_bridge::useOutputHandler(previous_); }
+  UrdfdomErrors(const UrdfdomErrors&) = delete;
+  UrdfdomErrors& operator=(const UrdfdomErrors&) = delete;
+
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error_.empty()) {
+      first_error_ = text;
+    }
+  }
+  const std::string& first_error() const { return first_error_; }
+
+ private:
+  console_bridge::OutputHandler* previous_;
+  std::string first_error_;
+};
+
+Eigen::Vector3d ToEigen(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
+Eigen::Quaterniond ToEigen(const urdf::Rotation& r) { return {r.w, r.x, r.y, r.z}; }
+Eigen::Isometry3d ToEigen(const urdf::Pose& pose) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = ToEigen(pose.rotation).toRotationMatrix();
+  t.translation() = ToEigen(pose.position);
+  return t;
+}
+
+std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
+std::string LinkLabel(const std::string& name) { return "link " + Quoted(name); }
+
+std::string JointTypeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
+// "a", "b", "c" (quoted, comma separated); "none" when empty.
+std::string QuotedList(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + Quoted(name);
+  return list.empty() ? "none" : list;
+}
+
+// What a subtree of links fixed to each other becomes.
+enum class GroupKind {
+  kWorld,    // the massless root and the links fixed to it: world colliders
+  kFree,     // the root with an <inertial> or a link on a floating joint, and the links fixed to it
+  kSkipped,  // a link on another joint type and the links fixed to it
+};
+
+// One link of a group and its pose in the frame of the group's first link.
+struct Member {
+  const urdf::Link* link = nullptr;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // member link frame → group link frame
+};
+
+struct Group {
+  GroupKind kind = GroupKind::kFree;
+  std::string joint;  // joint "j" (revolute) that attaches the group, "" for the root
+  Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();  // group link frame → world
+  std::vector<Member> members;  // the group's own link first, then the fixed ones
+};
+
+// Mass, centre of mass and inertia about it of a group, in its first link's frame and axes.
+struct MassProperties {
+  double mass = 0.0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
+// Θ of one <inertial> in the group link's axes: the inertia is given about the link's centre of
+// mass in the axes of <inertial><origin> (rotation R_o); the member link is turned by R_m in the
+// group link's frame, so Θ = (R_m R_o) Θ (R_m R_o)ᵀ. Throws unless Θ is positive definite.
+void AddInertial(const Member& member, std::vector<std::pair<double, Eigen::Vector3d>>* masses,
+                 std::vector<Eigen::Matrix3d>* inertias) {
+  const urdf::Link& link = *member.link;
+  const urdf::Inertial& inertial = *link.inertial;
+  Eigen::Matrix3d theta;
+  theta << inertial.ixx, inertial.ixy, inertial.ixz,  //
+      inertial.ixy, inertial.iyy, inertial.iyz,       //
+      inertial.ixz, inertial.iyz, inertial.izz;
+  if (Eigen::LLT<Eigen::Matrix3d>(theta).info() != Eigen::Success) {
+    throw UrdfError("urdf: " + LinkLabel(link.name) +
+                    " > inertial > inertia: not positive definite (ixx=" +
+                    std::to_string(inertial.ixx) + " iyy=" + std::to_string(inertial.iyy) +
+                    " izz=" + std::to_string(inertial.izz) + " ixy=" +
+                    std::to_string(inertial.ixy) + " ixz=" + std::to_string(inertial.ixz) +
+                    " iyz=" + std::to_string(inertial.iyz) + ")");
+  }
+  const Eigen::Matrix3d rotation =
+      member.pose.linear() * ToEigen(inertial.origin.rotation).toRotationMatrix();
+  masses->emplace_back(inertial.mass, member.pose * ToEigen(inertial.origin.position));
+  inertias->push_back(rotation * theta * rotation.transpose());
+}
+
+// The members' inertials combined (see urdf_scene.h): m = Σ mᵢ, c = Σ mᵢ cᵢ / m,
+// Θ_S = Σ [Θᵢ + mᵢ (|dᵢ|² 1 − dᵢ dᵢᵀ)] with dᵢ = cᵢ − c. mass = 0 when no member has one.
+MassProperties CombinedMass(const std::vector<Member>& members) {
+  std::vector<std::pair<double, Eigen::Vector3d>> masses;  // (mᵢ, cᵢ)
+  std::vector<Eigen::Matrix3d> inertias;                   // Θᵢ about cᵢ
+  for (const Member& member : members) {
+    if (member.link->inertial) AddInertial(member, &masses, &inertias);
+  }
+  MassProperties total;
+  if (masses.empty()) return total;
+  for (const auto& [m, c] : masses) total.mass += m;
+  // c = c₀ + Σ (mᵢ/m)(cᵢ − c₀): exactly c₀ for a single link
+  const Eigen::Vector3d& reference = masses.front().second;
+  total.com = reference;
+  for (const auto& [m, c] : masses) total.com += (m / total.mass) * (c - reference);
+  // parallel-axis theorem: Θ_S = Σ [Θᵢ + mᵢ (|dᵢ|² 1 − dᵢ dᵢᵀ)]
+  for (std::size_t i = 0; i < masses.size(); ++i) {
+    const Eigen::Vector3d d = masses[i].second - total.com;
+    total.inertia += inertias[i] + masses[i].first * (d.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                                      d * d.transpose());
+  }
+  return total;
+}
+
+ContactLaw LawFromSurface(const LinkSurface& surface, const UrdfSceneOptions& options) {
+  ContactLaw law;
+  law.friction_set = surface.friction_set.value_or(options.friction_set);
+  law.restitution = surface.restitution;
+  const double radius = options.contact_radius.value_or(surface.patch_radius);
+  law.rbar = AverageFrictionRadius(radius);  // (50)
+  if (options.mu) {
+    law.mu = *options.mu;
+  } else {
+    law.mu = surface.mu;
+    // Gazebo bounds the drilling torque by μ_τ (3πR/16) λ_N, the core by R̄ μ λ_N
+    if (surface.torsional_coefficient != surface.mu && surface.mu > 0.0) {
+      law.rbar *= surface.torsional_coefficient / surface.mu;
+    }
+  }
+  return law;
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The body's parameters when it is a Tippe-Top (see urdf_scene.h), for TippeTopInitialState.
+std::optional<TippeTopParameters> TippeTopOf(const Scene& scene, int body_index,
+                                             const UrdfSceneOptions& options,
+                                             const LinkSurface& surface) {
+  const Collider* big = nullptr;
+  const Collider* peg = nullptr;
+  int big_count = 0;
+  int peg_count = 0;
+  for (const Collider& c : scene.colliders) {
+    if (c.body != body_index) continue;
+    if (EndsWith(c.name, "big_sphere")) {
+      big = &c;
+      ++big_count;
+    }
+    if (EndsWith(c.name, "peg_sphere")) {
+      peg = &c;
+      ++peg_count;
+    }
+  }
+  if (big_count != 1 || peg_count != 1) return std::nullopt;
+  const auto on_axis = [](const Collider& c) {
+    return c.shape.type == ShapeType::kSphere && c.pose.translation().head<2>().isZero(0.0);
+  };
+  const Eigen::Matrix3d& theta = scene.bodies[body_index].inertia;
+  const bool symmetric = theta(0, 0) == theta(1, 1) && theta(0, 1) == 0.0 &&
+                         theta(0, 2) == 0.0 && theta(1, 2) == 0.0;
+  if (!on_axis(*big) || !on_axis(*peg) || !symmetric) return std::nullopt;
+  TippeTopParameters p;
+  p.mass = scene.bodies[body_index].mass;
+  p.inertia_equatorial = theta(0, 0);
+  p.inertia_axial = theta(2, 2);
+  p.big_radius = big->shape.radius;
+  p.peg_radius = peg->shape.radius;
+  p.big_offset = big->pose.translation().z();
+  p.peg_offset = peg->pose.translation().z();
+  p.gravity = options.gravity;
+  p.mu = big->law.mu;
+  p.contact_radius = options.contact_radius.value_or(surface.patch_radius);
+  p.restitution = big->law.restitution;
+  p.friction_set = big->law.friction_set;
+  return p;
+}
+
+class Builder {
+ public:
+  Builder(const urdf::ModelInterface& model, const UrdfXml& xml, const UrdfSceneOptions& options)
+      : model_(model), xml_(xml), options_(options) {
+    for (std::size_t i = 0; i < xml.link_order.size(); ++i) document_index_[xml.link_order[i]] = i;
+    if (options.ground) collider_links_["ground"] = "";
+  }
+
+  UrdfScene Build() {
+    result_.warnings = xml_.warnings;
+    CheckExtensionReferences();
+    result_.scene.gravity = Eigen::Vector3d(0.0, 0.0, -options_.gravity);
+    const urdf::Link& root = *model_.getRoot();
+    Collect(root, root.inertial ? GroupKind::kFree : GroupKind::kWorld, "",
+            Eigen::Isometry3d::Identity());
+    // bodies in the document order of their links; the world group (the root's) first
+    std::stable_sort(groups_.begin(), groups_.end(), [&](const Group& a, const Group& b) {
+      const auto rank = [&](const Group& g) {
+        return std::make_pair(g.kind != GroupKind::kWorld, Index(*g.members.front().link));
+      };
+      return rank(a) < rank(b);
+    });
+    for (Group& group : groups_) {
+      std::stable_sort(group.members.begin() + 1, group.members.end(),
+                       [&](const Member& a, const Member& b) {
+                         return Index(*a.link) < Index(*b.link);
+                       });
+      switch (group.kind) {
+        case GroupKind::kWorld: AddWorld(group); break;
+        case GroupKind::kFree: AddBody(group); break;
+        case GroupKind::kSkipped: ReportSkipped(group); break;
+      }
+    }
+    if (result_.scene.bodies.empty()) {
+      throw UrdfError("urdf: no free body: the root " + LinkLabel(root.name) +
+                      (root.inertial ? "" : " has no <inertial>, so it is the static world,") +
+                      " and no link with an <inertial> hangs on a floating joint");
+    }
+    if (options_.ground) result_.scene.colliders.push_back(GroundPlane());
+    for (int b = 0; b < static_cast<int>(result_.scene.bodies.size()); ++b) {
+      result_.tippe_top.push_back(
+          TippeTopOf(result_.scene, b, options_, Surface(result_.scene.bodies[b].name)));
+    }
+    ReportMissingCollideFunctions();
+    return std::move(result_);
+  }
+
+ private:
+  std::size_t Index(const urdf::Link& link) const {
+    const auto it = document_index_.find(link.name);
+    return it == document_index_.end() ? document_index_.size() : it->second;
+  }
+
+  LinkSurface Surface(const std::string& link) const {
+    const auto it = xml_.surfaces.find(link);
+    return it == xml_.surfaces.end() ? LinkSurface{} : it->second;
+  }
+
+  // Typos in references are errors: every <nonsmooth_sim> names a link and every shape a
+  // collision of it. An unknown Gazebo reference may be a Gazebo-only name: a warning.
+  void CheckExtensionReferences() {
+    for (const ExtensionBlock& block : xml_.extension_blocks) {
+      if (!model_.getLink(block.link)) {
+        throw UrdfError("urdf: " + block.where + ": no link named " + Quoted(block.link) +
+                        "; links: " + QuotedList(xml_.link_order));
+      }
+    }
+    for (const auto& [link_name, shapes] : xml_.shapes) {
+      const urdf::LinkConstSharedPtr link = model_.getLink(link_name);
+      std::vector<std::string> names;
+      for (const urdf::CollisionSharedPtr& c : link->collision_array) {
+        if (!c->name.empty()) names.push_back(c->name);
+      }
+      for (const auto& [collision, shape] : shapes) {
+        if (std::find(names.begin(), names.end(), collision) == names.end()) {
+          throw UrdfError("urdf: " + shape.where + ": " + LinkLabel(link_name) +
+                          " has no collision named " + Quoted(collision) +
+                          "; its named collisions: " + QuotedList(names));
+        }
+      }
+    }
+    for (const std::string& ref : xml_.gazebo_references) {
+      if (!model_.getLink(ref) && !model_.getJoint(ref)) {
+        result_.warnings.push_back("urdf: gazebo reference=" + Quoted(ref) +
+                                   " is neither a link nor a joint, ignored");
+      }
+    }
+  }
+
+  // The group of `link` (the link and those fixed to it), then the groups below it, depth first.
+  void Collect(const urdf::Link& link, GroupKind kind, const std::string& joint,
+               const Eigen::Isometry3d& world_pose) {
+    struct Next {
+      const urdf::Link* link;
+      const urdf::Joint* joint;
+      Eigen::Isometry3d world_pose;
+    };
+    std::vector<Next> below;
+    Group group{kind, joint, world_pose, {}};
+    const auto add = [&](const auto& self, const urdf::Link& member,
+                         const Eigen::Isometry3d& pose) -> void {
+      group.members.push_back({&member, pose});
+      for (const urdf::JointSharedPtr& j : member.child_joints) {
+        const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
+        if (!child) continue;
+        const Eigen::Isometry3d child_pose = pose * ToEigen(j->parent_to_joint_origin_transform);
+        if (j->type == urdf::Joint::FIXED) {
+          self(self, *child, child_pose);
+        } else {
+          below.push_back({child.get(), j.get(), world_pose * child_pose});
+        }
+      }
+    };
+    add(add, link, Eigen::Isometry3d::Identity());
+    groups_.push_back(std::move(group));
+    for (const Next& next : below) {
+      Collect(*next.link,
+              next.joint->type == urdf::Joint::FLOATING ? GroupKind::kFree : GroupKind::kSkipped,
+              "joint " + Quoted(next.joint->name) + " (" + JointTypeName(next.joint->type) + ")",
+              next.world_pose);
+    }
+  }
+
+  void AddWorld(const Group& group) {
+    const std::string& world = group.members.front().link->name;
+    for (const Member& member : group.members) {
+      if (member.link->inertial) {
+        throw UrdfError("urdf: " + LinkLabel(member.link->name) + " is fixed to the world " +
+                        LinkLabel(world) +
+                        ": static links have no mass; make it a floating joint or remove the "
+                        "inertial");
+      }
+      AddColliders(*member.link, group.world_pose * member.pose, kWorld);
+    }
+  }
+
+  void AddBody(const Group& group) {
+    const urdf::Link& link = *group.members.front().link;
+    const MassProperties mass = CombinedMass(group.members);
+    if (mass.mass == 0.0) {
+      for (const Member& member : group.members) {
+        if (!member.link->collision_array.empty()) {
+          throw UrdfError("urdf: " + LinkLabel(link.name) +
+                          ": no <inertial> (a free body with collisions needs mass and inertia" +
+                          (group.members.size() > 1 ? ", on it or on a link fixed to it)" : ")"));
+        }
+      }
+      return;  // a bare frame
+    }
+    const int index = static_cast<int>(result_.scene.bodies.size());
+    RigidBody body;
+    body.name = link.name;
+    body.mass = mass.mass;
+    body.inertia = mass.inertia;
+    body.com_in_link = mass.com;
+    // K: the body link's frame shifted to S, link axes
+    const Eigen::Isometry3d link_in_body(Eigen::Translation3d(-mass.com));
+    std::vector<std::string> merged;
+    for (const Member& member : group.members) {
+      AddColliders(*member.link, link_in_body * member.pose, index);
+      if (member.link != &link) merged.push_back(member.link->name);
+    }
+    BodyState state;
+    state.orientation = Eigen::Quaterniond(group.world_pose.linear());
+    state.position = group.world_pose * mass.com;
+    result_.scene.bodies.push_back(body);
+    result_.scene.initial_state.push_back(state);
+    result_.merged_links.push_back(std::move(merged));
+  }
+
+  void ReportSkipped(const Group& group) {
+    const std::string& first = group.members.front().link->name;
+    for (const Member& member : group.members) {
+      if (!member.link->inertial && member.link->collision_array.empty()) continue;
+      const std::string& name = member.link->name;
+      result_.warnings.push_back(
+          "urdf: " + LinkLabel(name) +
+          (name == first ? "" : " is fixed to " + LinkLabel(first) + ", which") + " hangs on " +
+          group.joint + ": only the root, links on floating joints and links fixed to them are "
+          "simulated, skipped");
+    }
+  }
+
+  // The colliders of `link`; `frame` maps the link frame to K of body `body` (or to the world).
+  void AddColliders(const urdf::Link& link, const Eigen::Isometry3d& frame, int body) {
+    const LinkSurface surface = Surface(link.name);
+    const auto overrides = xml_.shapes.find(link.name);
+    int k = 0;
+    for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
+      ++k;
+      const std::string label = LinkLabel(link.name) + " > collision " + Quoted(collision->name);
+      const ShapeOverride* override = nullptr;
+      if (overrides != xml_.shapes.end()) {
+        const auto it = overrides->second.find(collision->name);
+        if (it != overrides->second.end()) override = &it->second;
+      }
+      Collider collider;
+      if (override != nullptr) {
+        if (override->shape.type == ShapeType::kPlane && body != kWorld) {
+          throw UrdfError("urdf: " + override->where + ": a plane is a half-space fixed in the "
+                          "world, but " + LinkLabel(link.name) + " is part of a free body; "
+                          "allowed on free bodies: <ellipsoid>, <capsule>");
+        }
+        collider.shape = override->shape;
+      } else if (!collision->geometry) {
+        result_.warnings.push_back("urdf: " + label + ": no geometry, skipped");
+        continue;
+      } else {
+        switch (collision->geometry->type) {
+          case urdf::Geometry::SPHERE:
+            collider.shape =
+                Shape::Sphere(static_cast<const urdf::Sphere&>(*collision->geometry).radius);
+            break;
+          case urdf::Geometry::CYLINDER: {
+            const auto& c = static_cast<const urdf::Cylinder&>(*collision->geometry);
+            collider.shape = Shape::Cylinder(c.radius, 0.5 * c.length);  // axis z
+            break;
+          }
+          case urdf::Geometry::BOX: {
+            const urdf::Vector3& size = static_cast<const urdf::Box&>(*collision->geometry).dim;
+            collider.shape = Shape::Box(0.5 * ToEigen(size));
+            break;
+          }
+          default:
+            result_.warnings.push_back(
+                "urdf: " + label +
+                ": meshes are not supported (use sphere, box, cylinder, or an ellipsoid or "
+                "capsule from <nonsmooth_sim>), skipped");
+            continue;
+        }
+      }
+      collider.name =
+          collision->name.empty() ? link.name + "_collision" + std::to_string(k) : collision->name;
+      ClaimName(collider.name, link.name, label);
+      collider.body = body;
+      collider.pose = frame * ToEigen(collision->origin);
+      collider.law = LawFromSurface(surface, options_);
+      result_.scene.colliders.push_back(collider);
+    }
+  }
+
+  // Contacts are addressed by collider name: every name once.
+  void ClaimName(const std::string& name, const std::string& link, const std::string& label) {
+    const auto [it, inserted] = collider_links_.emplace(name, link);
+    if (inserted) return;
+    if (it->second.empty()) {
+      throw UrdfError("urdf: " + label + ": the name " + Quoted(name) +
+                      " is reserved for the ground plane (rename the collision, or load without "
+                      "the ground)");
+    }
+    throw UrdfError("urdf: " + label + ": the collision name " + Quoted(name) +
+                    " is also used by " + LinkLabel(it->second) +
+                    " (contacts are addressed by name; rename one)");
+  }
+
+  // A pair of shape types that can meet (different bodies, or a body and the world) without a
+  // collide function would pass through each other silently: one warning per pair of types.
+  void ReportMissingCollideFunctions() {
+    struct Seen {
+      int body;
+      const std::string* name;
+    };
+    // per type, colliders on up to two distinct bodies: enough to find a pair on two bodies
+    std::array<std::vector<Seen>, kShapeTypeCount> seen;
+    for (const Collider& c : result_.scene.colliders) {
+      std::vector<Seen>& s = seen[static_cast<int>(c.shape.type)];
+      if (s.size() < 2 && (s.empty() || s.front().body != c.body)) s.push_back({c.body, &c.name});
+    }
+    for (int a = 0; a < kShapeTypeCount; ++a) {
+      for (int b = a; b < kShapeTypeCount; ++b) {
+        const ShapeType ta = static_cast<ShapeType>(a);
+        const ShapeType tb = static_cast<ShapeType>(b);
+        for (const Seen& x : seen[a]) {
+          const auto y = std::find_if(seen[b].begin(), seen[b].end(),
+                                      [&](const Seen& s) { return s.body != x.body; });
+          if (y == seen[b].end()) continue;
+          if (FindCollideFunction(ta, tb) == nullptr) {
+            result_.warnings.push_back(
+                "urdf: no collide function for " + std::string(ShapeTypeName(ta)) + "-" +
+                std::string(ShapeTypeName(tb)) + " pairs (e.g. colliders " + Quoted(*x.name) +
+                " and " + Quoted(*y->name) + "): they pass through each other");
+          }
+          break;
+        }
+      }
+    }
+  }
+
+  const urdf::ModelInterface& model_;
+  const UrdfXml& xml_;
+  const UrdfSceneOptions& options_;
+  std::map<std::string, std::size_t> document_index_;
+  std::map<std::string, std::string> collider_links_;  // collider name → link ("" = the ground)
+  std::vector<Group> groups_;
+  UrdfScene result_;
+};
+
+}  // namespace
+
+void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
+  if (!(std::isfinite(options.gravity) && options.gravity >= 0.0)) {
+    throw std::invalid_argument("gravity must be finite and >= 0 [m/s^2]");
+  }
+  if (options.mu && !(std::isfinite(*options.mu) && *options.mu >= 0.0)) {
+    throw std::invalid_argument("mu must be finite and >= 0");
+  }
+  if (options.contact_radius &&
+      !(std::isfinite(*options.contact_radius) && *options.contact_radius >= 0.0)) {
+    throw std::invalid_argument("contact_radius must be finite and >= 0 [m]");
+  }
+  if (FrictionSetName(options.friction_set) == "unknown") {
+    throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());
+  }
+}
+
+UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& options) {
+  ValidateUrdfSceneOptions(options);
+  const UrdfXml xml = ParseUrdfXml(urdf_xml);
+
+  urdf::ModelInterfaceSharedPtr model;
+  {
+    UrdfdomErrors errors;
+    model = urdf::parseURDF(urdf_xml);
+    if (!errors.first_error().empty()) throw UrdfError("urdf: " + errors.first_error());
+  }
+  if (!model || !model->getRoot()) throw UrdfError("urdf: urdfdom could not build the model");
+
+  UrdfScene result = Builder(*model, xml, options).Build();
+  try {
+    ValidateScene(result.scene);
+  } catch (const std::invalid_argument& e) {
+    throw UrdfError(std::string("urdf: ") + e.what());
+  }
+  return result;
+}
+
+UrdfScene LoadUrdfFile(const std::string& path, const UrdfSceneOptions& options) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw UrdfError("urdf: " + path + ": no such file");
+  }
+  if (std::filesystem::is_directory(path, error)) {
+    throw UrdfError("urdf: " + path + ": is a directory, expected a URDF file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in.is_open()) throw UrdfError("urdf: " + path + ": cannot be opened (permissions?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw UrdfError("urdf: " + path + ": cannot be read");
+  try {
+    return SceneFromUrdf(text.str(), options);
+  } catch (const UrdfError& e) {
+    // "urdf: <reason>" → "urdf: <path>: <reason>"
+    const std::string what = e.what();
+    const std::string prefix = "urdf: ";
+    throw UrdfError(prefix + path + ": " +
+                    (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+  }
+}
+
+}  // namespace nonsmooth_sim::scene_io
