@@ -1,8 +1,10 @@
-// Narrow phase: ns per call of each pair function at a representative pose (the shapes touching
-// with a small penetration, in general position), the closed forms and the FCL pairs.
+// Narrow phase: ns per call of each pair function at a representative pose (a shallow contact in
+// general position), the closed forms and the FCL pairs.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
 
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/collision/capsule_capsule.h"
@@ -22,7 +24,8 @@ namespace {
 // A pose tilted about a general axis, centre at `centre`.
 Eigen::Isometry3d TiltedPose(const Eigen::Vector3d& centre, double angle) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  pose.linear() =
+      Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   pose.translation() = centre;
   return pose;
 }
@@ -39,19 +42,37 @@ Shape Example(ShapeType type) {
   return Shape::Sphere(0.1);
 }
 
-// One call of `function` on shapes a, b: A at the origin (tilted unless a plane), B above it at
-// the height where the two (nearly) touch along z, found from the bounding radii and a margin
-// large enough that every pair returns its contacts.
+// The smallest gap the pair function returns (+inf for none) [m].
+double SmallestGap(CollideFunction function, const Shape& a, const Eigen::Isometry3d& pose_a,
+                   const Shape& b, const Eigen::Isometry3d& pose_b) {
+  ContactGeometry out[kMaxPairContacts];
+  const int count = function(a, pose_a, b, pose_b, 1e9, out);
+  double gap = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) gap = std::min(gap, out[i].gap);
+  return gap;
+}
+
+// One call of `function` on shapes a, b: A at the origin (tilted unless a plane), B tilted above
+// it at the height where the smallest gap is kDepth (bisection, before timing): a shallow
+// contact in general position, as in a simulation step.
 void BM_Pair(benchmark::State& state, ShapeType type_a, ShapeType type_b,
              CollideFunction function) {
+  constexpr double kDepth = -1e-3;
+  constexpr double kMargin = 0.01;
   const Shape a = Example(type_a);
   const Shape b = Example(type_b);
+  const bool plane = type_a == ShapeType::kPlane;
   const Eigen::Isometry3d pose_a =
-      type_a == ShapeType::kPlane ? Eigen::Isometry3d::Identity() : TiltedPose({0, 0, 0}, 0.4);
-  const double height = type_a == ShapeType::kPlane ? 0.9 * BoundingRadius(b)
-                                                    : 0.8 * (BoundingRadius(a) + BoundingRadius(b));
-  const Eigen::Isometry3d pose_b = TiltedPose({0.01, 0.02, height}, 1.1);
-  constexpr double kMargin = 0.05;
+      plane ? Eigen::Isometry3d::Identity() : TiltedPose({0, 0, 0}, 0.4);
+  const double reach = (plane ? 0.0 : BoundingRadius(a)) + BoundingRadius(b);
+  double lo = plane ? -reach : 0.0;
+  double hi = reach + 0.1;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double gap = SmallestGap(function, a, pose_a, b, TiltedPose({0.01, 0.02, mid}, 1.1));
+    (gap < kDepth ? lo : hi) = mid;
+  }
+  const Eigen::Isometry3d pose_b = TiltedPose({0.01, 0.02, hi}, 1.1);
   ContactGeometry out[kMaxPairContacts];
   int contacts = 0;
   for (auto _ : state) {
@@ -59,6 +80,7 @@ void BM_Pair(benchmark::State& state, ShapeType type_a, ShapeType type_b,
     benchmark::DoNotOptimize(out);
   }
   state.counters["contacts"] = contacts;
+  state.counters["gap"] = SmallestGap(function, a, pose_a, b, pose_b);
 }
 
 #define NONSMOOTH_SIM_PAIR_BENCH(name, a, b, function) \

@@ -25,14 +25,15 @@ namespace {
 
 // A contact normal shorter than this is FCL's zero normal of exactly touching shapes.
 constexpr double kFclMinNormalNorm = 0.5;
-// GJK's stopping tolerance of the distance queries (FCL's own GJK, GST_INDEP): the distance is
-// then exact to ~1e-9 m at the sizes of the tests, against ~1e-6 m with FCL's default 1e-6.
+// GJK's stopping tolerance of the distance queries (FCL's own GJK, GST_INDEP): distances then
+// agree with the closed forms to ~1e-12 m and normals to ~1e-6 (FCL's default 1e-6 with its
+// libccd GJK: ~1e-6 m and ~1e-2, test/collision_fcl).
 constexpr double kDistanceTolerance = 1e-13;
 // Fixed-point iterations of the refinement, and their stopping rules: |n_{k+1} − n_k| (GJK's
 // nearest points jitter the normal at ~1e-6 at a separation ε) or the gain in PG(n_k) [m].
 constexpr int kMaxRefinements = 8;
 constexpr double kRefinedNormalChange = 1e-6;
-constexpr double kRefinedGapChange = 1e-13;
+constexpr double kRefinedGapChange = 1e-11;
 // |n_i − n| up to which FCL's box–box contact normal is the refined normal n (both are then the
 // same face normal, to round-off and GJK's error).
 constexpr double kManifoldNormalTolerance = 1e-6;
@@ -68,8 +69,8 @@ const fcl::CollisionGeometryd* Pointer(const FclGeometry& geometry) {
       geometry);
 }
 
-// True for the pairs FCL collides by a formula of its own (exact), not by MPR.
-bool FclHasExactPenetration(ShapeType a, ShapeType b) {
+// True for the pairs FCL collides by a formula of its own, not by MPR.
+bool FclHasOwnFormula(ShapeType a, ShapeType b) {
   if (a > b) std::swap(a, b);
   return (a == ShapeType::kSphere && b == ShapeType::kCylinder) ||
          (a == ShapeType::kBox && b == ShapeType::kBox);
@@ -84,7 +85,9 @@ Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose,
   switch (shape.type) {
     case ShapeType::kPlane: break;
     case ShapeType::kSphere: x = shape.radius * d; break;
-    case ShapeType::kCapsule: x = shape.radius * d + sign(d.z()) * shape.half_length * Eigen::Vector3d::UnitZ(); break;
+    case ShapeType::kCapsule:
+      x = shape.radius * d + sign(d.z()) * shape.half_length * Eigen::Vector3d::UnitZ();
+      break;
     case ShapeType::kEllipsoid: {
       // S² d/|S d| (plane_ellipsoid.h)
       const Eigen::Vector3d s_d = shape.half_extents.cwiseProduct(d);
@@ -118,6 +121,9 @@ struct Distance {
 };
 
 // GJK distance with nearest points (world) of separated shapes; FCL's GJK, tolerance above.
+// FCL's signed distance is not used for penetration: with libccd its EPA asserts (aborts the
+// process: Debian's libfcl keeps assertions) on some configurations, and with GST_INDEP it goes
+// through GST_INDEP's collide, whose EPA contacts have negative depths and normals in o1's frame.
 Distance FclDistance(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& pose_a,
                      const fcl::CollisionGeometryd* b, const Eigen::Isometry3d& pose_b) {
   const fcl::DistanceRequestd request(/*enable_nearest_points=*/true,
@@ -169,9 +175,10 @@ ContactGeometry RefineFrom(const Shape& a, const Eigen::Isometry3d& pose_a,
 // Fixed point: move B along n_k until its gap along n_k is ε (by s = ε − PG(n_k)), take the
 // normal of the now separated shapes from GJK's nearest points, n_{k+1} = (p_b − p_a)/|p_b − p_a|.
 // At a fixed point n* B was moved along the normal of the deepest points, which keeps them the
-// nearest points: gap = PG(n*), point_b = p_b − s n*. Started from the guess and from the best
-// face normal (a box's axes, a cylinder's axis: where flat faces touch, the least penetration is
-// along one of them); the start with the larger PG at its fixed point wins.
+// nearest points: gap = PG(n*), point_b = p_b − s n*. Started from the guess, and again from the
+// best face normal (a box's axes, a cylinder's axis, a cylinder's barrel normal at the other
+// shape's deepest point: where flat faces touch, the least penetration is along one of them) if
+// that separates better than the first fixed point; the larger PG wins.
 ContactGeometry RefinedContact(const Shape& a, const Eigen::Isometry3d& pose_a,
                                const fcl::CollisionGeometryd* fcl_a, const Shape& b,
                                const Eigen::Isometry3d& pose_b,
@@ -204,7 +211,8 @@ ContactGeometry RefinedContact(const Shape& a, const Eigen::Isometry3d& pose_a,
   };
   barrel(a, pose_a, Support(b, pose_b, -guess), 1.0);
   barrel(b, pose_b, Support(a, pose_a, guess), -1.0);
-  if (face_gap > -std::numeric_limits<double>::infinity()) {
+  // a second fixed point from the face normal if it separates better than the first one's
+  if (face_gap > best.gap) {
     const ContactGeometry from_face =
         RefineFrom(a, pose_a, fcl_a, b, pose_b, fcl_b, face_normal, separation);
     if (from_face.gap > best.gap) best = from_face;
@@ -268,11 +276,11 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   fcl::collide(fcl_a, pose_a, fcl_b, pose_b, request, result);
   const int count = std::min<int>(static_cast<int>(result.numContacts()), kMaxPairContacts);
   if (count > 0) {
-    bool exact = FclHasExactPenetration(a.type, b.type);
+    bool own_formula = FclHasOwnFormula(a.type, b.type);
     for (int i = 0; i < count; ++i) {
-      exact = exact && result.getContact(i).normal.norm() > kFclMinNormalNorm;
+      own_formula = own_formula && result.getContact(i).normal.norm() > kFclMinNormalNorm;
     }
-    if (exact) {
+    if (own_formula) {
       // gap = −depth, points p ± (depth/2) n
       for (int i = 0; i < count; ++i) {
         const fcl::Contactd& contact = result.getContact(i);
@@ -295,9 +303,9 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   if (count > 0) {
     // MPR (or a zero normal): refined from MPR's normal, or the line of centres
     const Eigen::Vector3d& mpr = result.getContact(0).normal;
-    c = RefinedContact(a, pose_a, fcl_a, b, pose_b, fcl_b,
-                       mpr.norm() > kFclMinNormalNorm ? Eigen::Vector3d(mpr.normalized())
-                                                      : centre_line);
+    c = RefinedContact(
+        a, pose_a, fcl_a, b, pose_b, fcl_b,
+        mpr.norm() > kFclMinNormalNorm ? Eigen::Vector3d(mpr.normalized()) : centre_line);
   } else {
     // separated: GJK's nearest points; refined where too close to give a direction
     const Distance nearest = FclDistance(fcl_a, pose_a, fcl_b, pose_b);
@@ -311,8 +319,8 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
       c = RefinedContact(a, pose_a, fcl_a, b, pose_b, fcl_b,
                          NormalizedOr(nearest.point_b - nearest.point_a, centre_line));
     }
-    if (!(c.gap <= margin)) return 0;
   }
+  if (!std::isfinite(c.gap) || !(c.gap <= margin)) return 0;  // (non-finite: GJK failed)
   if (a.type == ShapeType::kBox && b.type == ShapeType::kBox) {
     return BoxBoxManifold(fcl_a, pose_a, fcl_b, pose_b, c, separation, margin, out);
   }
@@ -321,13 +329,17 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
 }
 
 void RegisterFclPairs() {
-  constexpr ShapeType kPairs[][2] = {
-      {ShapeType::kSphere, ShapeType::kEllipsoid},    {ShapeType::kSphere, ShapeType::kCylinder},
-      {ShapeType::kCapsule, ShapeType::kEllipsoid},   {ShapeType::kCapsule, ShapeType::kCylinder},
-      {ShapeType::kCapsule, ShapeType::kBox},         {ShapeType::kEllipsoid, ShapeType::kEllipsoid},
-      {ShapeType::kEllipsoid, ShapeType::kCylinder},  {ShapeType::kEllipsoid, ShapeType::kBox},
-      {ShapeType::kCylinder, ShapeType::kCylinder},   {ShapeType::kCylinder, ShapeType::kBox},
-      {ShapeType::kBox, ShapeType::kBox}};
+  constexpr ShapeType kPairs[][2] = {{ShapeType::kSphere, ShapeType::kEllipsoid},
+                                     {ShapeType::kSphere, ShapeType::kCylinder},
+                                     {ShapeType::kCapsule, ShapeType::kEllipsoid},
+                                     {ShapeType::kCapsule, ShapeType::kCylinder},
+                                     {ShapeType::kCapsule, ShapeType::kBox},
+                                     {ShapeType::kEllipsoid, ShapeType::kEllipsoid},
+                                     {ShapeType::kEllipsoid, ShapeType::kCylinder},
+                                     {ShapeType::kEllipsoid, ShapeType::kBox},
+                                     {ShapeType::kCylinder, ShapeType::kCylinder},
+                                     {ShapeType::kCylinder, ShapeType::kBox},
+                                     {ShapeType::kBox, ShapeType::kBox}};
   for (const auto& pair : kPairs) RegisterCollideFunction(pair[0], pair[1], &CollideFcl);
 }
 

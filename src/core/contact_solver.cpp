@@ -260,7 +260,11 @@ void ContactSolver::Solve(const ContactProblem& problem, const SolverOptions& op
                                 std::to_string(lambda->size()));
   }
   if (!lambda->allFinite()) throw std::invalid_argument("lambda (warm start): must be finite");
+  SolvePrevalidated(problem, options, lambda, statistics);
+}
 
+void ContactSolver::SolvePrevalidated(const ContactProblem& problem, const SolverOptions& options,
+                                      Eigen::VectorXd* lambda, SolverStatistics* statistics) {
   const std::size_t m = problem.contacts.size();
   statistics->friction_projected.assign(m, false);
   statistics->normal_projected.assign(m, false);

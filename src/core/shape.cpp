@@ -24,9 +24,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {
-    ShapeType::kPlane,     ShapeType::kSphere,   ShapeType::kCapsule,
-    ShapeType::kEllipsoid, ShapeType::kCylinder, ShapeType::kBox};
+constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {ShapeType::kPlane,    ShapeType::kSphere,
+                                                       ShapeType::kCapsule,  ShapeType::kEllipsoid,
+                                                       ShapeType::kCylinder, ShapeType::kBox};
 
 // "<where>: <what> = <value>: must be <allowed>"
 [[noreturn]] void Reject(const std::string& where, const std::string& what, double value,
@@ -181,11 +181,11 @@ Eigen::Matrix3d ShapeUnitInertia(const Shape& shape) {
       return Diagonal(0.4 * m * r * r, 0.4 * m * r * r, 0.4 * m * r * r);
     }
     case ShapeType::kCapsule: {
-      const double m_c = 2.0 * kPi * r * r * l;           // cylinder
-      const double m_s = 4.0 / 3.0 * kPi * r * r * r;     // both hemispheres
+      const double m_c = 2.0 * kPi * r * r * l;        // cylinder
+      const double m_s = 4.0 / 3.0 * kPi * r * r * r;  // both hemispheres
       const double zz = 0.5 * m_c * r * r + 0.4 * m_s * r * r;
-      const double xx = m_c * (0.25 * r * r + l * l / 3.0) +
-                        m_s * (0.4 * r * r + l * l + 0.75 * l * r);
+      const double xx =
+          m_c * (0.25 * r * r + l * l / 3.0) + m_s * (0.4 * r * r + l * l + 0.75 * l * r);
       return Diagonal(xx, xx, zz);
     }
     case ShapeType::kEllipsoid: {

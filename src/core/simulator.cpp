@@ -82,10 +82,12 @@ void Simulator::Initialize() {
     if (first_body == kWorld) first_body = c.body;
   }
   // static colliders have their pose once and for all
-  collider_pose_.resize(scene_.colliders.size());
+  collider_pose_.assign(scene_.colliders.size(), Eigen::Isometry3d::Identity());
   collider_rotated_.resize(scene_.colliders.size());
+  bounding_radius_.resize(scene_.colliders.size());
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     collider_rotated_[i] = !scene_.colliders[i].pose.linear().isIdentity(0.0);
+    bounding_radius_[i] = BoundingRadius(scene_.colliders[i].shape);
   }
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     if (scene_.colliders[i].body == kWorld) collider_pose_[i] = scene_.colliders[i].pose;
@@ -93,6 +95,7 @@ void Simulator::Initialize() {
   spheres_.reserve(scene_.colliders.size());
   pairs_.reserve(2 * scene_.colliders.size());
   closed_.reserve(2 * scene_.colliders.size());
+  closed_count_ = 0;
   contacts_.reserve(2 * scene_.colliders.size());
   memory_.reserve(4 * scene_.colliders.size());
   memory_.clear();
@@ -133,9 +136,9 @@ void Simulator::Step(StepStatistics* out) {
   FindContacts(&stats);
   BuildIslands(&stats);
   // every closed contact belongs to an island, whose solve writes its flags
-  if (stats.solver.friction_projected.size() != closed_.size()) {
-    stats.solver.friction_projected.resize(closed_.size());
-    stats.solver.normal_projected.resize(closed_.size());
+  if (stats.solver.friction_projected.size() != closed_count_) {
+    stats.solver.friction_projected.resize(closed_count_);
+    stats.solver.normal_projected.resize(closed_count_);
   }
   for (const Island& island : islands_) {
     finite = finite && SolveIsland(island, &stats);
@@ -168,8 +171,8 @@ void Simulator::Step(StepStatistics* out) {
   time_ += options_.time_step;
   if (options_.gap_correction) CorrectGaps(&stats);
   // the report: γ_E = W(q_M)ᵀu_E, the velocity the contact law constrained
-  contacts_.resize(closed_.size());
-  for (std::size_t i = 0; i < closed_.size(); ++i) {
+  contacts_.resize(closed_count_);
+  for (std::size_t i = 0; i < closed_count_; ++i) {
     ClosedContact& c = closed_[i];
     c.report.relative_velocity.setZero();
     for (const ContactSide& side : c.jacobian.side) {
@@ -260,7 +263,7 @@ void Simulator::SetOptions(const SimulatorOptions& options) {
 ContactLaw Simulator::PairLaw(int first, int second) const {
   ContactLaw law = CombineLaws(scene_.colliders[static_cast<std::size_t>(first)],
                                scene_.colliders[static_cast<std::size_t>(second)]);
-  for (const auto& [pair, set] : pair_sets_) {
+  for (const auto& [pair, set] : pair_sets_) {  // usually empty
     if (pair.first == first && pair.second == second) law.friction_set = set;
   }
   return law;

@@ -28,16 +28,16 @@ int Root(std::vector<int>* parent, int b) {
 
 }  // namespace
 
-Eigen::Isometry3d Simulator::ColliderPose(int collider, bool end) const {
+void Simulator::UpdateColliderPose(int collider, bool end) {
   const Collider& c = scene_.colliders[static_cast<std::size_t>(collider)];
-  if (c.body == kWorld) return c.pose;
+  Eigen::Isometry3d& pose = collider_pose_[static_cast<std::size_t>(collider)];
+  if (c.body == kWorld) return;  // set once in Initialize
   const BodyStep& w = body_step_[static_cast<std::size_t>(c.body)];
   const Eigen::Matrix3d& rotation = end ? w.rotation_end : w.rotation_mid;
   const Eigen::Vector3d& position =
       end ? state_[static_cast<std::size_t>(c.body)].position : w.position_mid;
-  // (A, r_S) ∘ pose, written out: Eigen's Transform product multiplies the full 4 × 4 matrices
-  Eigen::Isometry3d pose;
-  pose.matrix().row(3) << 0.0, 0.0, 0.0, 1.0;
+  // (A, r_S) ∘ pose, written out in place: Eigen's Transform product multiplies the full 4 × 4
+  // matrices (the last row stays (0, 0, 0, 1) from Initialize)
   if (collider_rotated_[static_cast<std::size_t>(collider)]) {
     pose.linear().noalias() = rotation * c.pose.linear();
   } else {
@@ -45,20 +45,19 @@ Eigen::Isometry3d Simulator::ColliderPose(int collider, bool end) const {
   }
   pose.translation().noalias() = rotation * c.pose.translation();
   pose.translation() += position;
-  return pose;
 }
 
 void Simulator::FindContacts(StepStatistics* stats) {
-  closed_.clear();
+  closed_count_ = 0;
   pairs_.clear();
   spheres_.clear();
   // broad phase: every body collider against every static plane, the rest by sweep and prune
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     const Collider& c = scene_.colliders[i];
     if (c.shape.type == ShapeType::kPlane) continue;
-    if (c.body != kWorld) collider_pose_[i] = ColliderPose(static_cast<int>(i), false);
+    UpdateColliderPose(static_cast<int>(i), /*end=*/false);
     const Eigen::Vector3d center = collider_pose_[i].translation();
-    const double radius = BoundingRadius(c.shape);
+    const double radius = bounding_radius_[i];
     if (c.body != kWorld) {
       for (int p : planes_) {
         const Eigen::Isometry3d& plane = scene_.colliders[static_cast<std::size_t>(p)].pose;
@@ -75,7 +74,7 @@ void Simulator::FindContacts(StepStatistics* stats) {
   // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep)
   std::sort(pairs_.begin(), pairs_.end());
   for (const auto& [first, second] : pairs_) AddPairContacts(first, second);
-  stats->closed_contacts = static_cast<int>(closed_.size());
+  stats->closed_contacts = static_cast<int>(closed_count_);
 }
 
 void Simulator::AddPairContacts(int first, int second) {
@@ -87,7 +86,7 @@ void Simulator::AddPairContacts(int first, int second) {
   const Collider& collider_b = scene_.colliders[static_cast<std::size_t>(b)];
   const Eigen::Isometry3d& pose_a = collider_pose_[static_cast<std::size_t>(a)];
   const Eigen::Isometry3d& pose_b = collider_pose_[static_cast<std::size_t>(b)];
-  ContactGeometry geometry[kMaxPairContacts];
+  ContactGeometry* geometry = geometry_.data();
   const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b, 0.0, geometry);
   if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
   const ContactLaw law = PairLaw(first, second);
@@ -98,7 +97,8 @@ void Simulator::AddPairContacts(int first, int second) {
   for (int k = 0; k < count; ++k) {
     const ContactGeometry& g = geometry[k];
     if (g.gap > 0.0) continue;  // (12): g(q_M) ≤ 0
-    ClosedContact& c = closed_.emplace_back();
+    if (closed_count_ == closed_.size()) closed_.emplace_back();
+    ClosedContact& c = closed_[closed_count_++];
     c.key = ContactKey(first, second, g.feature);
     // the (pair, feature)'s memory, created on first contact (the only allocation of a step)
     const auto [memory, created] = memory_.try_emplace(c.key);
@@ -130,6 +130,7 @@ void Simulator::AddPairContacts(int first, int second) {
       if (side.body < 0) continue;
       const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
       side.angular = ContactAngularRows(r.frame, *points[s], w.position_mid, w.rotation_mid);
+      if (r.law.restitution == 0.0) continue;  // γ^B enters c only through ε (16)
       const BodyState& state = state_[static_cast<std::size_t>(side.body)];
       // γ^B = W(q_M)ᵀu_B
       c.gamma_begin += SideVelocity(c.jacobian, side, state.linear_velocity,
@@ -140,20 +141,21 @@ void Simulator::AddPairContacts(int first, int second) {
 
 void Simulator::BuildIslands(StepStatistics* stats) {
   islands_.clear();
-  if (closed_.empty()) return;
+  if (closed_count_ == 0) return;
   stats->islands = 1;
-  for (const ClosedContact& c : closed_) {
-    stats->max_penetration = std::max(stats->max_penetration, -c.report.gap);
+  for (std::size_t i = 0; i < closed_count_; ++i) {
+    stats->max_penetration = std::max(stats->max_penetration, -closed_[i].report.gap);
   }
   // one body against the static world (a top on the ground): one island, contacts in order
   bool single = true;
-  for (const ClosedContact& c : closed_) {
-    single = single && c.report.body_a < 0 && c.report.body_b == closed_[0].report.body_b;
+  for (std::size_t i = 0; i < closed_count_; ++i) {
+    single = single && closed_[i].report.body_a < 0 &&
+             closed_[i].report.body_b == closed_[0].report.body_b;
   }
   if (single) {
-    islands_.push_back(Island{0, static_cast<int>(closed_.size()), 0});
-    island_contacts_.resize(closed_.size());
-    for (std::size_t i = 0; i < closed_.size(); ++i) {
+    islands_.push_back(Island{0, static_cast<int>(closed_count_), 0});
+    island_contacts_.resize(closed_count_);
+    for (std::size_t i = 0; i < closed_count_; ++i) {
       island_contacts_[i] = static_cast<int>(i);
       closed_[i].offset = islands_[0].size;
       islands_[0].size += closed_[i].report.dimension;
@@ -168,15 +170,16 @@ void Simulator::BuildIslands(StepStatistics* stats) {
   }
   // union-find over the bodies that closed contacts link
   for (std::size_t b = 0; b < union_find_.size(); ++b) union_find_[b] = static_cast<int>(b);
-  for (const ClosedContact& c : closed_) {
+  for (std::size_t i = 0; i < closed_count_; ++i) {
+    const ClosedContact& c = closed_[i];
     if (c.report.body_a < 0) continue;
     const int ra = Root(&union_find_, c.report.body_a);
     const int rb = Root(&union_find_, c.report.body_b);
     if (ra != rb) union_find_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
   }
   // islands numbered in the order of their first contact; body_step_[root].island holds it
-  for (const ClosedContact& c : closed_) {
-    const int root = Root(&union_find_, c.report.body_b);
+  for (std::size_t i = 0; i < closed_count_; ++i) {
+    const int root = Root(&union_find_, closed_[i].report.body_b);
     BodyStep& w = body_step_[static_cast<std::size_t>(root)];
     if (w.island < 0) {
       w.island = static_cast<int>(islands_.size());
@@ -192,8 +195,8 @@ void Simulator::BuildIslands(StepStatistics* stats) {
     island.contact_count = 0;
     island.size = 0;
   }
-  island_contacts_.resize(closed_.size());
-  for (std::size_t i = 0; i < closed_.size(); ++i) {
+  island_contacts_.resize(closed_count_);
+  for (std::size_t i = 0; i < closed_count_; ++i) {
     ClosedContact& c = closed_[i];
     const int root = Root(&union_find_, c.report.body_b);
     Island& island = islands_[static_cast<std::size_t>(body_step_[static_cast<std::size_t>(root)].island)];
@@ -233,17 +236,20 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
   // one group).
   gap_groups_.clear();
   std::size_t i = 0;
-  while (i < closed_.size()) {
+  while (i < closed_count_) {
     // the contacts of one pair are consecutive in closed_
     std::size_t j = i;
-    while (j < closed_.size() && closed_[j].key >> 16 == closed_[i].key >> 16) ++j;
+    while (j < closed_count_ && closed_[j].key >> 16 == closed_[i].key >> 16) ++j;
     const ContactState& first = closed_[i].report;
-    ContactGeometry end[kMaxPairContacts];
-    const int count = Collide(
-        scene_.colliders[static_cast<std::size_t>(first.collider_a)].shape,
-        ColliderPose(first.collider_a, true),
-        scene_.colliders[static_cast<std::size_t>(first.collider_b)].shape,
-        ColliderPose(first.collider_b, true), 0.0, end);
+    ContactGeometry* end = geometry_.data();
+    // A static: its pose is the one it always has
+    // the poses at q_E (collider_pose_ held q_M for FindContacts, which sets it anew each step)
+    const std::size_t a = static_cast<std::size_t>(first.collider_a);
+    const std::size_t b = static_cast<std::size_t>(first.collider_b);
+    UpdateColliderPose(first.collider_a, /*end=*/true);
+    UpdateColliderPose(first.collider_b, /*end=*/true);
+    const int count = Collide(scene_.colliders[a].shape, collider_pose_[a],
+                              scene_.colliders[b].shape, collider_pose_[b], 0.0, end);
     for (std::size_t k = i; k < j; ++k) {
       const ContactState& r = closed_[k].report;
       double gap = std::numeric_limits<double>::infinity();  // feature gone: not penetrating

@@ -119,10 +119,11 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       problem.c.segment(c.offset, c.report.dimension) =
           (gamma_free + c.report.law.restitution * c.gamma_begin).head(c.report.dimension);
     }
-    // a diverged state (huge ω) can overflow c; the solver would reject it
-    if (!problem.c.allFinite()) return false;
-    // (17)
-    solver_.Solve(problem, options_.solver, &lambda, &island_stats_);
+    // a diverged state (huge ω) can overflow c (and G, with a body far away): not solved
+    if (!problem.c.allFinite() || !problem.G.allFinite()) return false;
+    // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
+    // options were validated when set
+    solver_.SolvePrevalidated(problem, options_.solver, &lambda, &island_stats_);
     total_iterations += island_stats_.iterations;
     passes = pass + 1;
     ApplyImpulses(island, lambda);

@@ -14,12 +14,11 @@
 //    zero normal).
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 
-#include <gtest/gtest.h>
-
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
+#include <gtest/gtest.h>
 
 #include <random>
 #include <sstream>
@@ -38,13 +37,17 @@ using namespace collision_test;  // NOLINT
 // Deepest penetration sampled [m]: a step's penetration in a simulation, ~1 % of the sizes.
 constexpr double kMaxDepth = 2e-3;
 
-constexpr ShapeType kFclPairs[][2] = {
-    {ShapeType::kSphere, ShapeType::kEllipsoid},   {ShapeType::kSphere, ShapeType::kCylinder},
-    {ShapeType::kCapsule, ShapeType::kEllipsoid},  {ShapeType::kCapsule, ShapeType::kCylinder},
-    {ShapeType::kCapsule, ShapeType::kBox},        {ShapeType::kEllipsoid, ShapeType::kEllipsoid},
-    {ShapeType::kEllipsoid, ShapeType::kCylinder}, {ShapeType::kEllipsoid, ShapeType::kBox},
-    {ShapeType::kCylinder, ShapeType::kCylinder},  {ShapeType::kCylinder, ShapeType::kBox},
-    {ShapeType::kBox, ShapeType::kBox}};
+constexpr ShapeType kFclPairs[][2] = {{ShapeType::kSphere, ShapeType::kEllipsoid},
+                                      {ShapeType::kSphere, ShapeType::kCylinder},
+                                      {ShapeType::kCapsule, ShapeType::kEllipsoid},
+                                      {ShapeType::kCapsule, ShapeType::kCylinder},
+                                      {ShapeType::kCapsule, ShapeType::kBox},
+                                      {ShapeType::kEllipsoid, ShapeType::kEllipsoid},
+                                      {ShapeType::kEllipsoid, ShapeType::kCylinder},
+                                      {ShapeType::kEllipsoid, ShapeType::kBox},
+                                      {ShapeType::kCylinder, ShapeType::kCylinder},
+                                      {ShapeType::kCylinder, ShapeType::kBox},
+                                      {ShapeType::kBox, ShapeType::kBox}};
 
 TEST(FclConventions, NormalFromO1ToO2AndWorldNearestPoints) {
   // sphere o1 below sphere o2, overlapping by 0.1: FCL's sphere formula and its MPR path
@@ -161,8 +164,7 @@ TEST(FclPairs, SphereAsEllipsoidBoxMatchesSphereBox) {
   ExpectMatchesClosedForm(ShapeType::kSphere, ShapeType::kBox, &CollideSphereBox, true);
 }
 TEST(FclPairs, CapsuleCapsuleMatchesClosedForm) {
-  ExpectMatchesClosedForm(ShapeType::kCapsule, ShapeType::kCapsule, &CollideCapsuleCapsule,
-                          false);
+  ExpectMatchesClosedForm(ShapeType::kCapsule, ShapeType::kCapsule, &CollideCapsuleCapsule, false);
 }
 
 // Every FCL pair against the signed distance SD = max_ω PG(ω), PG the projection gap from the
@@ -174,8 +176,9 @@ TEST(FclPairs, CapsuleCapsuleMatchesClosedForm) {
 //                (measured 5e-12), |n − d| ≤ 1e-4 (measured 1e-5), points on the surfaces to
 //                1e-7 m (measured 4e-9);
 //   penetrating  max(L, offset) − g, L the brute-force max of PG: both are lower bounds of SD,
-//                so a positive value proves that the depth is overstated. Measured: ≤ 3e-13 m for
-//                the pairs with a smooth shape; where two shapes have edges or rims (cylinder–
+//                so a positive value proves that the depth is overstated. Measured: ≤ 4e-10 m for
+//                the pairs with a smooth shape (bound 1e-9: the fixed point stops when PG gains
+//                < 1e-13 m per step); where two shapes have edges or rims (cylinder–
 //                cylinder, cylinder–box) the fixed point can stop at another local optimum (a
 //                separating direction, the depth overstated: measured ≤ 19 % of it), and box–box
 //                (FCL's ODE clipping, which prefers face axes to edge axes) by ≤ 5 %.
@@ -215,7 +218,7 @@ TEST(FclPairs, MatchSupportFunctionSignedDistance) {
                               return -ProjectionGap(s.a, s.pose_a, s.b, s.pose_b, w);
                             }).first;
       const double overstated = std::max(lower, offset) - c.gap;
-      EXPECT_LE(overstated, 1e-10 + overstated_fraction * -offset) << where;
+      EXPECT_LE(overstated, 1e-9 + overstated_fraction * -offset) << where;
       worst_overstated = std::max(worst_overstated, overstated / -offset);
     }
     ::testing::Test::RecordProperty(std::string(ShapeTypeName(pair[0])) + "_" +
@@ -263,7 +266,7 @@ TEST(FclPairs, ShapesRestingOnABoxHaveAVerticalNormal) {
   struct Resting {
     Shape shape;
     Eigen::Matrix3d rotation;
-    double centre_height;  // of the centre when the lowest point is at z = 0
+    double centre_height;    // of the centre when the lowest point is at z = 0
     Eigen::Vector3d lowest;  // the lowest point in the shape frame (a point of it when flat)
   };
   const Resting cases[] = {

@@ -99,13 +99,17 @@ TEST(PlaneBox, CornersMatchIndependentEnumerationAtRandomPoses) {
     double surface_min = kInf;
     for (int axis = 0; axis < 3; ++axis) {
       for (double side : {-1.0, 1.0}) {
-        surface_min = std::min(surface_min, BruteMinimize2([&](const Eigen::Vector2d& uv) {
-          Eigen::Vector3d local;
-          local[axis] = side * box.half_extents[axis];
-          local[(axis + 1) % 3] = uv[0] * box.half_extents[(axis + 1) % 3];
-          local[(axis + 2) % 3] = uv[1] * box.half_extents[(axis + 2) % 3];
-          return Height(plane, pose * local);
-        }, Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)).first);
+        surface_min = std::min(
+            surface_min, BruteMinimize2(
+                             [&](const Eigen::Vector2d& uv) {
+                               Eigen::Vector3d local;
+                               local[axis] = side * box.half_extents[axis];
+                               local[(axis + 1) % 3] = uv[0] * box.half_extents[(axis + 1) % 3];
+                               local[(axis + 2) % 3] = uv[1] * box.half_extents[(axis + 2) % 3];
+                               return Height(plane, pose * local);
+                             },
+                             Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1))
+                             .first);
       }
     }
     EXPECT_NEAR(lowest_corner, surface_min, kGapTolerance);
@@ -145,8 +149,8 @@ TEST(PlaneBox, TiltedBy1e3GivesTheLowerEdgesCorners) {
   const Shape box = Shape::Box(h);
   const double tilt = 1e-3;
   // about x: local (x, y, −c) at height c_z + y sin(tilt) − c cos(tilt): lowest at y = −b
-  const Eigen::Isometry3d pose =
-      Pose(Rotation(tilt, Eigen::Vector3d::UnitX()), {0, 0, h.z() * std::cos(tilt) + h.y() * std::sin(tilt)});
+  const Eigen::Isometry3d pose = Pose(Rotation(tilt, Eigen::Vector3d::UnitX()),
+                                      {0, 0, h.z() * std::cos(tilt) + h.y() * std::sin(tilt)});
   ContactGeometry out[kMaxPairContacts];
   ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1e-9, out), 2);
   for (int k = 0; k < 2; ++k) {

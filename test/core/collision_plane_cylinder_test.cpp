@@ -60,21 +60,29 @@ TEST(PlaneCylinder, MatchesBruteForceAtRandomPoses) {
       EXPECT_NEAR(local.z(), k == 0 ? -cylinder.half_length : cylinder.half_length, 1e-12);
       EXPECT_NEAR(local.head<2>().norm(), cylinder.radius, 1e-12);
       // the lowest point of that rim
-      const double rim_min = BruteMinimize1([&](double phi) {
-        return height(Disc(cylinder, k, cylinder.radius, phi));
-      }, 0.0, 2 * kPi, /*periodic=*/true).first;
+      const double rim_min =
+          BruteMinimize1(
+              [&](double phi) { return height(Disc(cylinder, k, cylinder.radius, phi)); }, 0.0,
+              2 * kPi, /*periodic=*/true)
+              .first;
       EXPECT_NEAR(c.gap, rim_min, kGapTolerance) << "pose " << i << " face " << k;
       lowest = std::min(lowest, c.gap);
     }
     // the lowest point of the whole surface
-    double surface_min = BruteMinimize2([&](const Eigen::Vector2d& p) {
-      return height(Lateral(cylinder, p[0], p[1]));
-    }, Eigen::Vector2d(0.0, -cylinder.half_length), Eigen::Vector2d(2 * kPi, cylinder.half_length),
-       /*periodic=*/{1, 0}).first;
+    double surface_min =
+        BruteMinimize2(
+            [&](const Eigen::Vector2d& p) { return height(Lateral(cylinder, p[0], p[1])); },
+            Eigen::Vector2d(0.0, -cylinder.half_length),
+            Eigen::Vector2d(2 * kPi, cylinder.half_length),
+            /*periodic=*/{1, 0})
+            .first;
     for (int k = 0; k < 2; ++k) {
-      surface_min = std::min(surface_min, BruteMinimize2([&](const Eigen::Vector2d& p) {
-        return height(Disc(cylinder, k, p[0], p[1]));
-      }, Eigen::Vector2d(0, 0), Eigen::Vector2d(cylinder.radius, 2 * kPi), /*periodic=*/{0, 1}).first);
+      surface_min = std::min(
+          surface_min,
+          BruteMinimize2(
+              [&](const Eigen::Vector2d& p) { return height(Disc(cylinder, k, p[0], p[1])); },
+              Eigen::Vector2d(0, 0), Eigen::Vector2d(cylinder.radius, 2 * kPi), /*periodic=*/{0, 1})
+              .first);
     }
     EXPECT_NEAR(lowest, surface_min, kGapTolerance) << "pose " << i;
   }
@@ -109,8 +117,8 @@ TEST(PlaneCylinder, CoinTiltedBy1e3IsTheRimPoint) {
   const Shape coin = Shape::Cylinder(r, l);
   // tilted about x: local (0, y, −l) sits at height c_z + y sin(tilt) − l cos(tilt), lowest at
   // y = −r; the centre is placed so that this point touches the ground
-  const Eigen::Isometry3d pose =
-      Pose(Rotation(tilt, Eigen::Vector3d::UnitX()), {0.1, 0.2, l * std::cos(tilt) + r * std::sin(tilt)});
+  const Eigen::Isometry3d pose = Pose(Rotation(tilt, Eigen::Vector3d::UnitX()),
+                                      {0.1, 0.2, l * std::cos(tilt) + r * std::sin(tilt)});
   ContactGeometry out[kMaxPairContacts];
   ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, pose, 1e-9, out), 1);
   EXPECT_TRUE(WellFormed(out[0]));

@@ -100,15 +100,15 @@ TEST(PlaneCapsule, MatchesBruteForceAtRandomPoses) {
     const int count = CollidePlaneCapsule(kPlane, plane, capsule, pose, kInf, out);
     ASSERT_EQ(count, capsule.half_length > 0.0 ? 2 : 1);
     // reference: the capsule as the union of balls of radius r on its core (shape.h)
-    const auto [height, s] = BruteMinimize1([&](double z) {
-      return Height(plane, pose * Eigen::Vector3d(0, 0, z)) - capsule.radius;
-    }, -capsule.half_length, capsule.half_length);
+    const auto [height, s] = BruteMinimize1(
+        [&](double z) { return Height(plane, pose * Eigen::Vector3d(0, 0, z)) - capsule.radius; },
+        -capsule.half_length, capsule.half_length);
     double lowest = kInf;
     int lower_end = 0;
     for (int k = 0; k < count; ++k) {
-      ExpectPlaneContact(out[k], plane, Shape::Sphere(capsule.radius),
-                         pose * Eigen::Translation3d(0, 0, k == 0 ? -capsule.half_length
-                                                                  : capsule.half_length));
+      ExpectPlaneContact(
+          out[k], plane, Shape::Sphere(capsule.radius),
+          pose * Eigen::Translation3d(0, 0, k == 0 ? -capsule.half_length : capsule.half_length));
       EXPECT_EQ(out[k].feature, k);
       // end k is the ball at z = ∓l
       const double z = k == 0 ? -capsule.half_length : capsule.half_length;
@@ -185,9 +185,9 @@ TEST(PlaneEllipsoid, RollingContactPointIsContinuous) {
     ASSERT_EQ(CollidePlaneEllipsoid(kPlane, ground, ellipsoid, pose, kInf, out), 1);
     EXPECT_EQ(out[0].feature, 0);
     if (i > 0) {
-      const double bound = (pose.translation() - previous_pose.translation()).norm() +
-                           AngleBetween(previous_pose.linear(), pose.linear()) *
-                               (a_max + a_max * a_max / a_min);
+      const double bound =
+          (pose.translation() - previous_pose.translation()).norm() +
+          AngleBetween(previous_pose.linear(), pose.linear()) * (a_max + a_max * a_max / a_min);
       const double moved = (out[0].point_b - previous.point_b).norm();
       ASSERT_LE(moved, bound) << "step " << i;
       largest_ratio = std::max(largest_ratio, moved / bound);

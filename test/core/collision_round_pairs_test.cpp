@@ -29,7 +29,9 @@ constexpr double kGapTolerance = 1e-12;
 constexpr double kSurfaceTolerance = 1e-12;
 
 // Core point of a sphere or capsule at parameter s (0 for a sphere).
-Eigen::Vector3d Core(const Eigen::Isometry3d& pose, double s) { return pose * Eigen::Vector3d(0, 0, s); }
+Eigen::Vector3d Core(const Eigen::Isometry3d& pose, double s) {
+  return pose * Eigen::Vector3d(0, 0, s);
+}
 
 // Random pose of B near A: centres within ~ the sum of the sizes, so that about half overlap.
 Eigen::Isometry3d NearbyPose(std::mt19937& rng, const Eigen::Isometry3d& pose_a, double reach) {
@@ -78,9 +80,10 @@ TEST(SphereCapsule, MatchesBruteForceAtRandomPoses) {
     const Eigen::Isometry3d pose_b = NearbyPose(rng, pose_a, 0.6);
     ContactGeometry out[kMaxPairContacts];
     ASSERT_EQ(CollideSphereCapsule(a, pose_a, b, pose_b, kInf, out), 1);
-    const double distance = BruteMinimize1([&](double t) {
-      return (Core(pose_b, t) - pose_a.translation()).norm();
-    }, -b.half_length, b.half_length).first;
+    const double distance =
+        BruteMinimize1([&](double t) { return (Core(pose_b, t) - pose_a.translation()).norm(); },
+                       -b.half_length, b.half_length)
+            .first;
     const double reference = distance - a.radius - b.radius;
     ExpectContactOfRoundShapes(out[0], a, pose_a, b, pose_b, reference);
     EXPECT_EQ(out[0].feature, 0);
@@ -103,7 +106,8 @@ TEST(CapsuleCapsule, MatchesBruteForceAtRandomPoses) {
     // function of s: nested 1-D zooming grids find the minimum of a convex function
     const auto distance_from_b = [&](double s) {
       return BruteMinimize1([&](double t) { return (Core(pose_b, t) - Core(pose_a, s)).norm(); },
-                            -b.half_length, b.half_length, false, 50, 9).first;
+                            -b.half_length, b.half_length, false, 50, 9)
+          .first;
     };
     const double distance =
         BruteMinimize1(distance_from_b, -a.half_length, a.half_length, false, 50, 9).first;
@@ -146,8 +150,14 @@ TEST(CapsuleCapsule, ParallelOverlapGivesTwoContactsAtItsEnds) {
   // still parallel within the tolerance: the height difference along the overlap (0.25 long)
   // is half of it
   ASSERT_EQ(CollideCapsuleCapsule(stack.a, stack.pose_a, stack.b,
-                                  stack.PoseB(0.5 * kFlatFaceTolerance / 0.25), 1e-3, out), 2);
+                                  stack.PoseB(0.5 * kFlatFaceTolerance / 0.25), 1e-3, out),
+            2);
   EXPECT_NEAR(out[1].gap - out[0].gap, 0.5 * kFlatFaceTolerance, 1e-12);
+  // no longer parallel at twice the tolerance: the closest points, one contact
+  ASSERT_EQ(CollideCapsuleCapsule(stack.a, stack.pose_a, stack.b,
+                                  stack.PoseB(2.0 * kFlatFaceTolerance / 0.25), 1e-3, out),
+            1);
+  EXPECT_EQ(out[0].feature, 0);
 }
 
 TEST(CapsuleCapsule, TiltedAlongTheOtherGivesTheLowerEnd) {
@@ -165,8 +175,9 @@ TEST(CapsuleCapsule, CollinearEndToEndIsOneContact) {
   const Shape b = Shape::Capsule(0.03, 0.2);
   const Eigen::Matrix3d along_x = Rotation(kPi / 2, Eigen::Vector3d::UnitY());
   ContactGeometry out[kMaxPairContacts];
-  ASSERT_EQ(CollideCapsuleCapsule(a, Pose(along_x, {0, 0, 0}), b, Pose(along_x, {0.5, 0, 0}),
-                                  kInf, out), 1);
+  ASSERT_EQ(
+      CollideCapsuleCapsule(a, Pose(along_x, {0, 0, 0}), b, Pose(along_x, {0.5, 0, 0}), kInf, out),
+      1);
   EXPECT_EQ(out[0].feature, 0);
   EXPECT_NEAR(out[0].gap, 0.5 - 0.4 - 0.08, 1e-15);
   EXPECT_LT((out[0].normal - Eigen::Vector3d::UnitX()).norm(), 1e-15);
@@ -176,22 +187,27 @@ TEST(CapsuleCapsule, CollinearEndToEndIsOneContact) {
 TEST(RoundPairs, DegenerateInputsGiveTheDefaultNormal) {
   ContactGeometry out[kMaxPairContacts];
   const Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
-  ASSERT_EQ(CollideSphereSphere(Shape::Sphere(0.1), origin, Shape::Sphere(0.2), origin, 0.0, out), 1);
+  ASSERT_EQ(CollideSphereSphere(Shape::Sphere(0.1), origin, Shape::Sphere(0.2), origin, 0.0, out),
+            1);
   EXPECT_TRUE(WellFormed(out[0]));
   EXPECT_EQ(out[0].normal, Eigen::Vector3d::UnitZ());
   EXPECT_NEAR(out[0].gap, -0.3, 1e-15);
-  ASSERT_EQ(CollideSphereCapsule(Shape::Sphere(0.1), Pose(Eigen::Matrix3d::Identity(), {0, 0, 0.05}),
-                                 Shape::Capsule(0.1, 0.3), origin, 0.0, out), 1);
+  ASSERT_EQ(
+      CollideSphereCapsule(Shape::Sphere(0.1), Pose(Eigen::Matrix3d::Identity(), {0, 0, 0.05}),
+                           Shape::Capsule(0.1, 0.3), origin, 0.0, out),
+      1);
   EXPECT_TRUE(WellFormed(out[0]));
   EXPECT_EQ(out[0].normal, Eigen::Vector3d::UnitZ());
   const Eigen::Isometry3d crossing = Pose(Rotation(kPi / 2, Eigen::Vector3d::UnitX()), {0, 0, 0});
   ASSERT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.3), origin, Shape::Capsule(0.1, 0.3),
-                                  crossing, 0.0, out), 1);
+                                  crossing, 0.0, out),
+            1);
   EXPECT_TRUE(WellFormed(out[0]));
   EXPECT_NEAR(out[0].gap, -0.2, 1e-15);
   // identical capsules: two contacts at the overlap's ends, finite
   ASSERT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.3), origin, Shape::Capsule(0.1, 0.3),
-                                  origin, 0.0, out), 2);
+                                  origin, 0.0, out),
+            2);
   for (int k = 0; k < 2; ++k) EXPECT_TRUE(WellFormed(out[k]));
 }
 
@@ -199,12 +215,22 @@ TEST(RoundPairs, NothingBeyondTheMargin) {
   ContactGeometry out[kMaxPairContacts];
   const Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d apart = Pose(Eigen::Matrix3d::Identity(), {0, 0, 1.0});
-  EXPECT_EQ(CollideSphereSphere(Shape::Sphere(0.2), origin, Shape::Sphere(0.3), apart, 0.49, out), 0);
-  EXPECT_EQ(CollideSphereSphere(Shape::Sphere(0.2), origin, Shape::Sphere(0.3), apart, 0.51, out), 1);
-  EXPECT_EQ(CollideSphereCapsule(Shape::Sphere(0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.49, out), 0);
-  EXPECT_EQ(CollideSphereCapsule(Shape::Sphere(0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.51, out), 1);
-  EXPECT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.39, out), 0);
-  EXPECT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.41, out), 1);
+  EXPECT_EQ(CollideSphereSphere(Shape::Sphere(0.2), origin, Shape::Sphere(0.3), apart, 0.49, out),
+            0);
+  EXPECT_EQ(CollideSphereSphere(Shape::Sphere(0.2), origin, Shape::Sphere(0.3), apart, 0.51, out),
+            1);
+  EXPECT_EQ(
+      CollideSphereCapsule(Shape::Sphere(0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.49, out),
+      0);
+  EXPECT_EQ(
+      CollideSphereCapsule(Shape::Sphere(0.2), origin, Shape::Capsule(0.1, 0.2), apart, 0.51, out),
+      1);
+  EXPECT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.2), origin, Shape::Capsule(0.1, 0.2), apart,
+                                  0.39, out),
+            0);
+  EXPECT_EQ(CollideCapsuleCapsule(Shape::Capsule(0.1, 0.2), origin, Shape::Capsule(0.1, 0.2), apart,
+                                  0.41, out),
+            1);
 }
 
 }  // namespace

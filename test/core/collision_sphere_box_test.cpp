@@ -60,13 +60,15 @@ TEST(SphereBox, MatchesBruteForceAtRandomPoses) {
     const Eigen::Isometry3d pose_box = RandomPose(rng, 1.0);
     // the centre in the box's frame within 1.5 × its half-extents plus the radius
     const Eigen::Vector3d reach = 1.5 * box.half_extents + Eigen::Vector3d::Constant(sphere.radius);
-    const Eigen::Vector3d local(Uniform(rng, -reach.x(), reach.x()), Uniform(rng, -reach.y(), reach.y()),
+    const Eigen::Vector3d local(Uniform(rng, -reach.x(), reach.x()),
+                                Uniform(rng, -reach.y(), reach.y()),
                                 Uniform(rng, -reach.z(), reach.z()));
     const Eigen::Isometry3d pose_sphere = Pose(RandomRotation(rng), pose_box * local);
     ContactGeometry out[kMaxPairContacts];
     ASSERT_EQ(CollideSphereBox(sphere, pose_sphere, box, pose_box, kInf, out), 1);
     const ContactGeometry& c = out[0];
-    const auto [distance, closest] = SignedDistanceFromBox(box, pose_box, pose_sphere.translation());
+    const auto [distance, closest] =
+        SignedDistanceFromBox(box, pose_box, pose_sphere.translation());
     EXPECT_TRUE(WellFormed(c));
     EXPECT_EQ(c.feature, 0);
     EXPECT_NEAR(c.gap, distance - sphere.radius, kGapTolerance) << "pose " << i;
@@ -111,7 +113,8 @@ TEST(SphereBox, CrossingTheSurfaceIsContinuous) {
     const Eigen::Vector3d local(0.29 + i * kStep, 0.05, 0.02);
     ContactGeometry out[kMaxPairContacts];
     ASSERT_EQ(CollideSphereBox(sphere, Pose(Eigen::Matrix3d::Identity(), pose_box * local), box,
-                               pose_box, kInf, out), 1);
+                               pose_box, kInf, out),
+              1);
     if (i > 0) {
       ASSERT_NEAR(out[0].gap, previous.gap, kStep * (1 + 1e-9)) << "step " << i;
       ASSERT_LT((out[0].normal - previous.normal).norm(), 1e-12) << "step " << i;
@@ -124,7 +127,8 @@ TEST(SphereBox, CentreAtTheBoxCentreIsDefined) {
   const Shape cube = Shape::Box({0.2, 0.2, 0.2});
   ContactGeometry out[kMaxPairContacts];
   ASSERT_EQ(CollideSphereBox(Shape::Sphere(0.1), Eigen::Isometry3d::Identity(), cube,
-                             Eigen::Isometry3d::Identity(), 0.0, out), 1);
+                             Eigen::Isometry3d::Identity(), 0.0, out),
+            1);
   EXPECT_TRUE(WellFormed(out[0]));
   EXPECT_NEAR(out[0].gap, -0.3, 1e-15);
   // the first axis on ties, + side at 0: out through +x

@@ -92,7 +92,8 @@ TEST(CollisionTable, RegisterReplacesAndRequiresOrder) {
   EXPECT_EQ(FindCollideFunction(ShapeType::kBox, ShapeType::kEllipsoid), &CountingFunction);
   ContactGeometry out[kMaxPairContacts];
   const Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
-  ASSERT_EQ(Collide(Shape::Box({1, 1, 1}), origin, Shape::Ellipsoid({1, 1, 1}), origin, 0.0, out), 1);
+  ASSERT_EQ(Collide(Shape::Box({1, 1, 1}), origin, Shape::Ellipsoid({1, 1, 1}), origin, 0.0, out),
+            1);
   EXPECT_EQ(out[0].feature, 42);
   EXPECT_EQ(out[0].normal, -Eigen::Vector3d::UnitZ());  // called swapped: flipped back
   RegisterCollideFunction(ShapeType::kEllipsoid, ShapeType::kBox, original);

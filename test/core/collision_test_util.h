@@ -157,8 +157,8 @@ std::pair<double, double> BruteMinimize1(F f, double lo, double hi, bool periodi
 /// Returns (min, argmin).
 template <typename F>
 std::pair<double, Eigen::Vector2d> BruteMinimize2(F f, Eigen::Vector2d lo, Eigen::Vector2d hi,
-                                                  Eigen::Array2i periodic = {0, 0},
-                                                  int grid = 20, int levels = 12) {
+                                                  Eigen::Array2i periodic = {0, 0}, int grid = 20,
+                                                  int levels = 12) {
   Eigen::Vector2d best_x = lo;
   double best = kInf;
   for (int level = 0; level < levels; ++level) {

@@ -22,11 +22,8 @@ using collision_test::kSeed;
 
 const std::vector<Shape>& SolidShapes() {
   static const std::vector<Shape> shapes = {
-      Shape::Sphere(0.3),
-      Shape::Capsule(0.2, 0.35),
-      Shape::Ellipsoid({0.3, 0.15, 0.45}),
-      Shape::Cylinder(0.25, 0.4),
-      Shape::Box({0.1, 0.3, 0.2}),
+      Shape::Sphere(0.3),         Shape::Capsule(0.2, 0.35),   Shape::Ellipsoid({0.3, 0.15, 0.45}),
+      Shape::Cylinder(0.25, 0.4), Shape::Box({0.1, 0.3, 0.2}),
   };
   return shapes;
 }
@@ -120,16 +117,18 @@ TEST(BoundingRadius, HoldsTheShapeAndIsAttained) {
     const double bound = BoundingRadius(shape);
     double farthest = 0.0;
     for (int i = 0; i < 20000; ++i) {
-      const Eigen::Vector3d d(collision_test::Uniform(rng, -1, 1), collision_test::Uniform(rng, -1, 1),
+      const Eigen::Vector3d d(collision_test::Uniform(rng, -1, 1),
+                              collision_test::Uniform(rng, -1, 1),
                               collision_test::Uniform(rng, -1, 1));
-      farthest = std::max(
-          farthest, collision_test::Support(shape, Eigen::Isometry3d::Identity(), d).norm());
+      farthest = std::max(farthest,
+                          collision_test::Support(shape, Eigen::Isometry3d::Identity(), d).norm());
     }
     // the farthest points: the corner, the rim, the poles, the longest semi-axis
     const Eigen::Vector3d corner = BoxOf(shape);
-    double attained = shape.type == ShapeType::kBox        ? corner.norm()
-                      : shape.type == ShapeType::kCylinder ? std::hypot(shape.radius, shape.half_length)
-                                                           : corner.maxCoeff();
+    double attained = shape.type == ShapeType::kBox ? corner.norm()
+                      : shape.type == ShapeType::kCylinder
+                          ? std::hypot(shape.radius, shape.half_length)
+                          : corner.maxCoeff();
     EXPECT_LE(farthest, bound * (1 + 1e-12)) << ShapeTypeName(shape.type);
     EXPECT_NEAR(attained, bound, 1e-15) << ShapeTypeName(shape.type);
   }
@@ -154,12 +153,15 @@ TEST(ShapeUnitInertia, ClosedFormsAndLimits) {
   EXPECT_TRUE(ShapeUnitInertia(Shape::Sphere(0.5))
                   .isApprox(Eigen::Matrix3d::Identity() * 0.4 * m * 0.25, 1e-14));
   // capsule of half_length 0 = sphere; ellipsoid of equal axes = sphere
-  EXPECT_TRUE(ShapeUnitInertia(Shape::Capsule(0.5, 0.0)).isApprox(ShapeUnitInertia(Shape::Sphere(0.5)), 1e-14));
+  EXPECT_TRUE(ShapeUnitInertia(Shape::Capsule(0.5, 0.0))
+                  .isApprox(ShapeUnitInertia(Shape::Sphere(0.5)), 1e-14));
   EXPECT_TRUE(ShapeUnitInertia(Shape::Ellipsoid({0.5, 0.5, 0.5}))
                   .isApprox(ShapeUnitInertia(Shape::Sphere(0.5)), 1e-14));
   // a cube of side 2: m (b² + c²)/3 = 8·2/3
-  EXPECT_TRUE(ShapeUnitInertia(Shape::Box({1, 1, 1})).isApprox(Eigen::Matrix3d::Identity() * 16.0 / 3.0, 1e-14));
-  // a long capsule tends to its cylinder plus point masses at the ends: I_xx/(m l²) → 1/3 as l/r → ∞
+  EXPECT_TRUE(ShapeUnitInertia(Shape::Box({1, 1, 1}))
+                  .isApprox(Eigen::Matrix3d::Identity() * 16.0 / 3.0, 1e-14));
+  // a long capsule tends to its cylinder plus point masses at the ends: I_xx/(m l²) → 1/3 as l/r →
+  // ∞
   const Shape rod = Shape::Capsule(1e-3, 1.0);
   EXPECT_NEAR(ShapeUnitInertia(rod)(0, 0) / (ShapeVolume(rod) * 1.0), 1.0 / 3.0, 2e-3);
 }

@@ -241,6 +241,11 @@ class ContactSolver {
   /// overload does not allocate at all once the sizes have been seen.
   void Solve(const ContactProblem& problem, const SolverOptions& options, Eigen::VectorXd* lambda,
              SolverStatistics* statistics);
+  /// The same without the checks, for a caller whose problems satisfy ValidateContactProblem by
+  /// construction and whose options were validated once (the Simulator: G_ii > 0 for every
+  /// contact on a body, c checked finite, Λ its own warm start). Bad input is undefined here.
+  void SolvePrevalidated(const ContactProblem& problem, const SolverOptions& options,
+                         Eigen::VectorXd* lambda, SolverStatistics* statistics);
 
  private:
   template <SolverType kType>

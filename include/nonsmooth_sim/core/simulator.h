@@ -54,6 +54,7 @@
 #define NONSMOOTH_SIM_CORE_SIMULATOR_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -276,8 +277,8 @@ class Simulator {
   ContactProblem& ProblemOfSize(int size);
   // the law of a pair with the overrides of SetFrictionSet
   ContactLaw PairLaw(int first, int second) const;
-  // World pose of a collider at q_M (end = false) or q_E (end = true).
-  Eigen::Isometry3d ColliderPose(int collider, bool end) const;
+  // collider_pose_ of a collider on a body at q_M (end = false) or q_E (end = true).
+  void UpdateColliderPose(int collider, bool end);
 
   Scene scene_;
   SimulatorOptions options_;
@@ -297,19 +298,25 @@ class Simulator {
   bool needs_sweep_ = false;
   std::vector<Eigen::Isometry3d> collider_pose_;  // per collider, at q_M during FindContacts
   std::vector<bool> collider_rotated_;  // per collider: its pose has a rotation (not identity)
+  std::vector<double> bounding_radius_;  // per collider: BoundingRadius of its shape [m]
   // warm starts and tangent frames by (pair, feature)
   std::unordered_map<std::uint64_t, ContactMemory> memory_;
   // workspace of Step(), sized once
   std::vector<BodyStep> body_step_;
   std::vector<BoundingSphere> spheres_;
   std::vector<std::pair<int, int>> pairs_;
+  // closed_[0, closed_count_): the contacts of this step; the storage only grows (a contact is
+  // not cheap to construct, every field is written when it is reused)
   std::vector<ClosedContact> closed_;
+  std::size_t closed_count_ = 0;
   std::vector<Island> islands_;
   std::vector<int> island_contacts_;  // contact indices grouped by island
   std::vector<int> union_find_;       // per body
   std::vector<int> island_bodies_;    // body indices grouped by island (same order as contacts)
   std::vector<int> island_body_start_;
   std::vector<GapGroup> gap_groups_;
+  // the pair function's output (a member: eight ContactGeometry are not free to construct)
+  std::array<ContactGeometry, kMaxPairContacts> geometry_;
   // contact problem and percussions per stacked size n (index n), sized on first use
   std::vector<ContactProblem> problems_;
   std::vector<Eigen::VectorXd> lambdas_;

@@ -31,8 +31,7 @@ int CollidePlaneBox(const Shape& /*plane*/, const Eigen::Isometry3d& pose_plane,
   const int p = (axis + 1) % 3;
   const int q = (axis + 2) % 3;
   // its height varies by 2(|m_p| h_p + |m_q| h_q) across it
-  const bool flat =
-      2.0 * (std::abs(m[p]) * h[p] + std::abs(m[q]) * h[q]) <= kFlatFaceTolerance;
+  const bool flat = 2.0 * (std::abs(m[p]) * h[p] + std::abs(m[q]) * h[q]) <= kFlatFaceTolerance;
 
   int count = 0;
   if (flat) {

@@ -6,8 +6,8 @@
 namespace nonsmooth_sim {
 
 int CollidePlaneCapsule(const Shape& /*plane*/, const Eigen::Isometry3d& pose_plane,
-                        const Shape& capsule, const Eigen::Isometry3d& pose_capsule,
-                        double margin, ContactGeometry* out) {
+                        const Shape& capsule, const Eigen::Isometry3d& pose_capsule, double margin,
+                        ContactGeometry* out) {
   const Eigen::Vector3d n = PlaneNormal(pose_plane);
   const Eigen::Vector3d axis = pose_capsule.linear().col(2);
   // a capsule of half_length 0 has one end sphere

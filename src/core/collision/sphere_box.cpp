@@ -11,7 +11,8 @@ int CollideSphereBox(const Shape& sphere, const Eigen::Isometry3d& pose_sphere, 
   const Eigen::Vector3d& h = box.half_extents;
   const double r = sphere.radius;
   // p = R_Bᵀ(c_a − c_b): the sphere's centre in the box frame
-  const Eigen::Vector3d p = rotation.transpose() * (pose_sphere.translation() - pose_box.translation());
+  const Eigen::Vector3d p =
+      rotation.transpose() * (pose_sphere.translation() - pose_box.translation());
   // q = clamp(p, −h, h)
   const Eigen::Vector3d q = p.cwiseMax(-h).cwiseMin(h);
   const double distance = (q - p).norm();

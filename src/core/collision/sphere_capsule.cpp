@@ -6,8 +6,8 @@
 namespace nonsmooth_sim {
 
 int CollideSphereCapsule(const Shape& sphere, const Eigen::Isometry3d& pose_sphere,
-                         const Shape& capsule, const Eigen::Isometry3d& pose_capsule,
-                         double margin, ContactGeometry* out) {
+                         const Shape& capsule, const Eigen::Isometry3d& pose_capsule, double margin,
+                         ContactGeometry* out) {
   const Eigen::Vector3d& c_a = pose_sphere.translation();
   const Eigen::Vector3d& c_b = pose_capsule.translation();
   const Eigen::Vector3d u = pose_capsule.linear().col(2);

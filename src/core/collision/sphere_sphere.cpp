@@ -8,9 +8,9 @@ namespace nonsmooth_sim {
 int CollideSphereSphere(const Shape& sphere_a, const Eigen::Isometry3d& pose_a,
                         const Shape& sphere_b, const Eigen::Isometry3d& pose_b, double margin,
                         ContactGeometry* out) {
-  const ContactGeometry contact = BallContact(pose_a.translation(), sphere_a.radius,
-                                              pose_b.translation(), sphere_b.radius,
-                                              /*feature=*/0);
+  const ContactGeometry contact =
+      BallContact(pose_a.translation(), sphere_a.radius, pose_b.translation(), sphere_b.radius,
+                  /*feature=*/0);
   if (!(contact.gap <= margin)) return 0;
   out[0] = contact;
   return 1;

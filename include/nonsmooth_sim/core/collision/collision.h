@@ -47,8 +47,9 @@ using CollideFunction = int (*)(const Shape& a, const Eigen::Isometry3d& pose_a,
 /// The registered function for a pair of types in either order (nullptr: no function; the pair
 /// is skipped and reported by the scene loader).
 CollideFunction FindCollideFunction(ShapeType a, ShapeType b);
-/// Registers (or replaces) the function of a pair; `a` ≤ `b` in ShapeType order. Not thread-safe:
-/// call at start-up, before simulators step (e.g. RegisterFclPairs()).
+/// Registers (or replaces) the function of a pair; `a` ≤ `b` in ShapeType order (throws
+/// std::invalid_argument otherwise: the function is called with its shapes in that order).
+/// Not thread-safe: call at start-up, before simulators step (e.g. RegisterFclPairs()).
 void RegisterCollideFunction(ShapeType a, ShapeType b, CollideFunction function);
 
 /// Collides two shapes in any order: calls the pair function with the shapes in ShapeType order

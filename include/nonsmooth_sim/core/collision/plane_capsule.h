@@ -20,8 +20,8 @@ namespace nonsmooth_sim {
 
 /// CollideFunction of (plane, capsule).
 int CollidePlaneCapsule(const Shape& plane, const Eigen::Isometry3d& pose_plane,
-                        const Shape& capsule, const Eigen::Isometry3d& pose_capsule,
-                        double margin, ContactGeometry* out);
+                        const Shape& capsule, const Eigen::Isometry3d& pose_capsule, double margin,
+                        ContactGeometry* out);
 
 }  // namespace nonsmooth_sim
 

@@ -14,9 +14,8 @@
 namespace nonsmooth_sim {
 
 /// CollideFunction of (plane, sphere).
-int CollidePlaneSphere(const Shape& plane, const Eigen::Isometry3d& pose_plane,
-                       const Shape& sphere, const Eigen::Isometry3d& pose_sphere, double margin,
-                       ContactGeometry* out);
+int CollidePlaneSphere(const Shape& plane, const Eigen::Isometry3d& pose_plane, const Shape& sphere,
+                       const Eigen::Isometry3d& pose_sphere, double margin, ContactGeometry* out);
 
 }  // namespace nonsmooth_sim
 

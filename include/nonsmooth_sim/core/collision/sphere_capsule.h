@@ -18,8 +18,8 @@ namespace nonsmooth_sim {
 
 /// CollideFunction of (sphere, capsule).
 int CollideSphereCapsule(const Shape& sphere, const Eigen::Isometry3d& pose_sphere,
-                         const Shape& capsule, const Eigen::Isometry3d& pose_capsule,
-                         double margin, ContactGeometry* out);
+                         const Shape& capsule, const Eigen::Isometry3d& pose_capsule, double margin,
+                         ContactGeometry* out);
 
 }  // namespace nonsmooth_sim
 
