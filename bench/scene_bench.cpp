@@ -43,8 +43,8 @@ void BM_SceneStep(benchmark::State& state, const char* name) {
     iterations += stats.solver.iterations;
     ++steps;
   }
-  state.counters["contacts"] = static_cast<double>(contacts) / static_cast<double>(steps);
-  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(steps);
+  state.counters["contacts_per_step"] = static_cast<double>(contacts) / static_cast<double>(steps);
+  state.counters["solver_iterations"] = static_cast<double>(iterations) / static_cast<double>(steps);
 }
 
 #define NONSMOOTH_SIM_SCENE_BENCHMARK(name) BENCHMARK_CAPTURE(BM_SceneStep, name, #name)

@@ -100,6 +100,7 @@ nonsmooth_sim_rostest(node_step_test)
 nonsmooth_sim_rostest(node_services_test)
 nonsmooth_sim_rostest(node_inversion_test)
 nonsmooth_sim_rostest(node_bad_urdf_test)
+nonsmooth_sim_rostest(node_scene_test)
 
 # A bag recorded through the launch file (scripts/record), checked topic by topic.
 add_test(NAME node_bag_record_test

@@ -1,6 +1,7 @@
 // Contacts of a step, see simulator.h: the index set (12) at q_M through the broad phase and the
 // collision table, the islands of bodies the closed contacts link, and the gap correction at q_E.
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,9 @@ std::uint64_t ContactKey(int first, int second, int feature) {
   return (static_cast<std::uint64_t>(first) << 40) | (static_cast<std::uint64_t>(second) << 16) |
          static_cast<std::uint64_t>(feature & 0xffff);
 }
+
+// The feature id of a pair's own memory (ContactKey with it: "the pair had a closed contact").
+constexpr int kPairFeature = 0xffff;
 
 // Union-find root with path halving.
 int Root(std::vector<int>* parent, int b) {
@@ -87,21 +91,34 @@ void Simulator::AddPairContacts(int first, int second) {
   const Eigen::Isometry3d& pose_a = collider_pose_[static_cast<std::size_t>(a)];
   const Eigen::Isometry3d& pose_b = collider_pose_[static_cast<std::size_t>(b)];
   ContactGeometry* geometry = geometry_.data();
-  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b, 0.0, geometry);
+  // points up to the hysteresis gap: the index set below decides which close
+  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,
+                            kContactHysteresis, geometry);
   if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
   const ContactLaw law = PairLaw(first, second);
   // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
   const Eigen::Vector3d hint = collider_a.shape.type == ShapeType::kPlane
                                    ? Eigen::Vector3d(pose_a.linear().col(0))
                                    : Eigen::Vector3d::UnitX();
+  // (12): g(q_M) ≤ 0, or ≤ kContactHysteresis while the pair had a closed contact in the last
+  // step (of any feature: a face that tilts past the flat tolerance hands over to its corners)
+  const auto pair_memory = memory_.find(ContactKey(first, second, kPairFeature));
+  const bool pair_was_closed =
+      pair_memory != memory_.end() && pair_memory->second.closed_step == step_count_ - 1;
+  const double max_gap = pair_was_closed ? kContactHysteresis : 0.0;
+  bool any_closed = false;
   for (int k = 0; k < count; ++k) {
     const ContactGeometry& g = geometry[k];
-    if (g.gap > 0.0) continue;  // (12): g(q_M) ≤ 0
+    const std::uint64_t key = ContactKey(first, second, g.feature);
+    if (g.gap > max_gap) continue;
+    any_closed = true;
+    auto memory = memory_.end();
     if (closed_count_ == closed_.size()) closed_.emplace_back();
     ClosedContact& c = closed_[closed_count_++];
-    c.key = ContactKey(first, second, g.feature);
+    c.key = key;
     // the (pair, feature)'s memory, created on first contact (the only allocation of a step)
-    const auto [memory, created] = memory_.try_emplace(c.key);
+    bool created = false;
+    std::tie(memory, created) = memory_.try_emplace(c.key);
     c.memory = &memory->second;
     const Eigen::Vector3d* previous = created ? nullptr : &c.memory->tangent1;
     ContactState& r = c.report;
@@ -114,8 +131,9 @@ void Simulator::AddPairContacts(int first, int second) {
     r.point = g.point_b;
     r.frame = MakeContactFrame(g.normal, previous, hint);
     r.law = law;
-    // a face lying flat: the drilling radius of its uniform pressure replaces the law's (50)
-    if (g.patch_radius > 0.0) r.law.rbar = g.patch_radius;
+    // a point of a face lying flat: the spread of the face's points carries the drilling torque
+    // of its uniform pressure, the point itself has no drilling component (collision.h)
+    if (g.face_point) r.law.rbar = 0.0;
     r.dimension = ContactDimension(r.law);
     r.percussion.setZero();
     // W at q_M over B (+) and A (-)
@@ -136,6 +154,10 @@ void Simulator::AddPairContacts(int first, int second) {
       c.gamma_begin += SideVelocity(c.jacobian, side, state.linear_velocity,
                                     state.angular_velocity);
     }
+  }
+  // the pair's own memory: closed in this step
+  if (any_closed) {
+    memory_[ContactKey(first, second, kPairFeature)].closed_step = step_count_;
   }
 }
 
@@ -250,6 +272,12 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
     UpdateColliderPose(first.collider_b, /*end=*/true);
     const int count = Collide(scene_.colliders[a].shape, collider_pose_[a],
                               scene_.colliders[b].shape, collider_pose_[b], 0.0, end);
+    // a body resting on several points of one static collider (a face, corners, a capsule on
+    // its side): levelled by a rotation and translation (LevelOnPoints), not only lifted
+    if (first.body_a == kWorld && j - i >= 2 && LevelOnPoints(i, j, end, count, stats)) {
+      i = j;
+      continue;
+    }
     for (std::size_t k = i; k < j; ++k) {
       const ContactState& r = closed_[k].report;
       double gap = std::numeric_limits<double>::infinity();  // feature gone: not penetrating
@@ -299,6 +327,64 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
       stats->gap_correction_energy -= mass_a * scene_.gravity.dot(move_a);
     }
   }
+}
+
+bool Simulator::LevelOnPoints(std::size_t first, std::size_t last, const ContactGeometry* end,
+                              int count, StepStatistics* stats) {
+  // the closed contacts [first, last) of one body B with one static collider, at q_E
+  const int body = closed_[first].report.body_b;
+  BodyState& s = state_[static_cast<std::size_t>(body)];
+  const BodyInertia& inertia = inertia_[static_cast<std::size_t>(body)];
+  const Eigen::Matrix3d& rotation = body_step_[static_cast<std::size_t>(body)].rotation_end;
+  const Eigen::Matrix3d inverse_inertia_world =
+      rotation * inertia.inverse_inertia * rotation.transpose();
+  constexpr int kMaxPoints = kMaxPairContacts;
+  Eigen::Vector3d normal[kMaxPoints];
+  Eigen::Vector3d moment[kMaxPoints];  // r_i × n_i
+  double gap[kMaxPoints];
+  double diagonal[kMaxPoints];
+  int n = 0;
+  double deepest = 0.0;
+  for (std::size_t k = first; k < last && n < kMaxPoints; ++k) {
+    for (int e = 0; e < count; ++e) {
+      if (end[e].feature != closed_[k].report.feature) continue;
+      normal[n] = end[e].normal;
+      moment[n] = (end[e].point_b - s.position).cross(end[e].normal);
+      gap[n] = end[e].gap;
+      diagonal[n] = inertia.inverse_mass + moment[n].dot(inverse_inertia_world * moment[n]);
+      deepest = std::min(deepest, gap[n]);
+      ++n;
+    }
+  }
+  if (n < 2) return false;                       // one point: the lift of the group rule
+  if (!(-deepest > kGapCorrectionSlop)) return true;  // within the slop: nothing to do
+  // the smallest displacement (Δr, Δθ) in the metric of M that brings every point to ≥ -slop:
+  //   g_i + n_i·Δr + (r_i × n_i)·Δθ ≥ -slop,  Δr = Σ n_i λ_i / m,  Δθ = Θ_w⁻¹ Σ (r_i × n_i) λ_i,
+  // λ_i ≥ 0 complementary, by projected Gauss-Seidel (a few points, well conditioned)
+  double lambda[kMaxPoints] = {};
+  Eigen::Vector3d dr = Eigen::Vector3d::Zero();
+  Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();
+  for (int sweep = 0; sweep < kLevellingSweeps; ++sweep) {
+    for (int p = 0; p < n; ++p) {
+      const double residual =
+          gap[p] + kGapCorrectionSlop + normal[p].dot(dr) + moment[p].dot(dtheta);
+      const double updated = std::max(0.0, lambda[p] - residual / diagonal[p]);
+      const double change = updated - lambda[p];
+      lambda[p] = updated;
+      dr += (change * inertia.inverse_mass) * normal[p];
+      dtheta += change * (inverse_inertia_world * moment[p]);
+    }
+  }
+  // apply: translate r_S, rotate about S by the world rotation Δθ; velocities kept
+  s.position += dr;
+  const double angle = dtheta.norm();
+  if (angle > 0.0) {
+    s.orientation =
+        (Eigen::Quaterniond(Eigen::AngleAxisd(angle, dtheta / angle)) * s.orientation).normalized();
+  }
+  stats->gap_correction = std::max(stats->gap_correction, dr.norm());
+  stats->gap_correction_energy -= inertia.mass * scene_.gravity.dot(dr);
+  return true;
 }
 
 }  // namespace nonsmooth_sim

@@ -3,7 +3,7 @@
 // The patch radius of a rectangle against numeric integration and the square's closed form; at
 // 1000 random poses (seed 12345; never flat) the returned corners against the corners enumerated
 // independently (Eigen::AlignedBox3d::corner) and against the brute-force lowest point of the
-// surface; a box resting on each of its faces (one patch, feature 8 + face); tilted by 1e-3 rad
+// surface; a box resting on each of its faces (four face points, features 8 + 4 face + j); tilted by 1e-3 rad
 // (the two corners of the lower edge).
 #include <gtest/gtest.h>
 
@@ -83,7 +83,7 @@ TEST(PlaneBox, CornersMatchIndependentEnumerationAtRandomPoses) {
       const ContactGeometry& c = out[k];
       EXPECT_TRUE(WellFormed(c));
       EXPECT_LE(c.gap, margin);
-      EXPECT_EQ(c.patch_radius, 0.0);
+      EXPECT_FALSE(c.face_point);
       EXPECT_LT((c.normal - plane.linear().col(2)).norm(), 1e-15);
       EXPECT_NEAR(Height(plane, c.point_a), 0.0, 1e-12);
       EXPECT_NEAR(c.gap, Height(plane, c.point_b), kGapTolerance);
@@ -116,10 +116,10 @@ TEST(PlaneBox, CornersMatchIndependentEnumerationAtRandomPoses) {
   }
 }
 
-// Resting on face f (f = 2j + side) at height 1e-4: one patch at that face's centre, feature
-// 8 + f, radius of the face's rectangle; with a margin beyond the box, the patch and the four
+// Resting on face f (f = 2j + side) at height 1e-4: four face points on its diagonals, features
+// 8 + 4f + j, at the rectangle's drilling radius; with a margin beyond the box, also the four
 // corners of the opposite face.
-TEST(PlaneBox, RestingOnEachFaceIsOnePatch) {
+TEST(PlaneBox, RestingOnEachFaceIsFourFacePoints) {
   const Eigen::Vector3d h(0.1, 0.2, 0.3);
   const Shape box = Shape::Box(h);
   for (int axis = 0; axis < 3; ++axis) {
@@ -131,15 +131,22 @@ TEST(PlaneBox, RestingOnEachFaceIsOnePatch) {
           Eigen::Quaterniond::FromTwoVectors(outward, -Eigen::Vector3d::UnitZ()).toRotationMatrix();
       const Eigen::Isometry3d pose = Pose(rotation, {0.5, 0.5, h[axis] + 1e-4});
       ContactGeometry out[kMaxPairContacts];
-      ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1e-3, out), 1) << "face " << face;
-      EXPECT_TRUE(WellFormed(out[0]));
-      EXPECT_EQ(out[0].feature, 8 + face);
-      EXPECT_NEAR(out[0].gap, 1e-4, 1e-15);
-      EXPECT_LT((out[0].point_b - pose * (h[axis] * outward)).norm(), 1e-15);
-      EXPECT_DOUBLE_EQ(out[0].patch_radius,
-                       RectanglePatchRadius(h[(axis + 1) % 3], h[(axis + 2) % 3]));
-      ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1.0, out), 5);
-      for (int k = 1; k < 5; ++k) EXPECT_NEAR(out[k].gap, 2 * h[axis] + 1e-4, 1e-15);
+      ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1e-3, out), 4) << "face " << face;
+      const Eigen::Vector3d face_centre = pose * (h[axis] * outward);
+      const double rbar = RectanglePatchRadius(h[(axis + 1) % 3], h[(axis + 2) % 3]);
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (int j = 0; j < 4; ++j) {
+        EXPECT_TRUE(WellFormed(out[j]));
+        EXPECT_TRUE(out[j].face_point);
+        EXPECT_EQ(out[j].feature, 8 + 4 * face + j);
+        EXPECT_NEAR(out[j].gap, 1e-4, 1e-15);
+        // on the face's diagonals at the uniform pressure's drilling radius from its centre
+        EXPECT_NEAR((out[j].point_b - face_centre).norm(), rbar, 1e-14);
+        mean += out[j].point_b / 4.0;
+      }
+      EXPECT_LT((mean - face_centre).norm(), 1e-14);
+      ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1.0, out), 8);
+      for (int k = 4; k < 8; ++k) EXPECT_NEAR(out[k].gap, 2 * h[axis] + 1e-4, 1e-15);
     }
   }
 }
@@ -154,7 +161,7 @@ TEST(PlaneBox, TiltedBy1e3GivesTheLowerEdgesCorners) {
   ContactGeometry out[kMaxPairContacts];
   ASSERT_EQ(CollidePlaneBox(kPlane, kGround, box, pose, 1e-9, out), 2);
   for (int k = 0; k < 2; ++k) {
-    EXPECT_EQ(out[k].patch_radius, 0.0);
+    EXPECT_FALSE(out[k].face_point);
     EXPECT_NEAR(out[k].gap, 0.0, 1e-15);
     const Eigen::Vector3d local = pose.inverse() * out[k].point_b;
     EXPECT_NEAR(local.y(), -h.y(), 1e-15);
@@ -175,8 +182,10 @@ TEST(PlaneBox, FlatThresholdIsTheHeightDifferenceAcrossTheFace) {
     const Eigen::Isometry3d pose = Pose(Rotation(tilt, Eigen::Vector3d::UnitX()), {0, 0, h.z()});
     ContactGeometry out[kMaxPairContacts];
     const int count = CollidePlaneBox(kPlane, kGround, box, pose, 1e-3, out);
-    EXPECT_EQ(count, factor < 1.0 ? 1 : 4) << "factor " << factor;
-    EXPECT_EQ(out[0].feature, factor < 1.0 ? 8 + 4 : 0) << "factor " << factor;
+    // flat: the four face points of the bottom face (face 4: −z); tilted: its four corners
+    EXPECT_EQ(count, 4) << "factor " << factor;
+    EXPECT_EQ(out[0].feature, factor < 1.0 ? 8 + 4 * 4 : 0) << "factor " << factor;
+    EXPECT_EQ(out[0].face_point, factor < 1.0) << "factor " << factor;
   }
 }
 

@@ -3,7 +3,7 @@
 // At 1000 random poses (seed 12345; never flat) the lowest returned gap is compared with the
 // brute-force minimum of the height over the whole surface (lateral surface and both discs,
 // zooming grid), and each rim contact with the minimum over its own rim. Then the flat-face
-// patch (a coin flat: one patch, 2r/3; tilted by 1e-3 rad: the rim point where it must be), the
+// face (a coin flat: four face points at 2r/3; tilted by 1e-3 rad: the rim point where it must be), the
 // tolerance's threshold, a cylinder on its side, and a disc rolling on its rim (feature kept,
 // contact point continuous).
 #include <gtest/gtest.h>
@@ -51,7 +51,7 @@ TEST(PlaneCylinder, MatchesBruteForceAtRandomPoses) {
       const ContactGeometry& c = out[k];
       EXPECT_TRUE(WellFormed(c));
       EXPECT_EQ(c.feature, k);
-      EXPECT_EQ(c.patch_radius, 0.0);
+      EXPECT_FALSE(c.face_point);
       EXPECT_LT((c.normal - plane.linear().col(2)).norm(), 1e-15);
       EXPECT_NEAR(Height(plane, c.point_a), 0.0, kSurfaceTolerance);
       EXPECT_NEAR(c.gap, Height(plane, c.point_b), kGapTolerance);
@@ -88,26 +88,34 @@ TEST(PlaneCylinder, MatchesBruteForceAtRandomPoses) {
   }
 }
 
-TEST(PlaneCylinder, CoinLyingFlatIsOnePatch) {
-  const Shape coin = Shape::Cylinder(0.012, 0.001);
-  // resting on its −z face (feature 2), 1e-4 above the ground
+TEST(PlaneCylinder, CoinLyingFlatIsFourFacePointsAtTwoThirdsOfTheRadius) {
+  const double r = 0.012;
+  const Shape coin = Shape::Cylinder(r, 0.001);
+  // resting on its −z face (features 2..5), 1e-4 above the ground
   ContactGeometry out[kMaxPairContacts];
   const Eigen::Isometry3d up = Pose(Eigen::Matrix3d::Identity(), {0.3, -0.2, 0.001 + 1e-4});
-  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, up, 1e-3, out), 1);
-  EXPECT_TRUE(WellFormed(out[0]));
-  EXPECT_EQ(out[0].feature, 2);
-  EXPECT_DOUBLE_EQ(out[0].patch_radius, 2.0 * 0.012 / 3.0);
-  EXPECT_NEAR(out[0].gap, 1e-4, 1e-15);
-  EXPECT_LT((out[0].point_b - Eigen::Vector3d(0.3, -0.2, 1e-4)).norm(), 1e-15);
-  EXPECT_LT((out[0].point_a - Eigen::Vector3d(0.3, -0.2, 0.0)).norm(), 1e-15);
-  // upside down: the +z face (feature 3)
+  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, up, 1e-3, out), 4);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_TRUE(WellFormed(out[j]));
+    EXPECT_TRUE(out[j].face_point);
+    EXPECT_EQ(out[j].feature, 2 + j);
+    EXPECT_NEAR(out[j].gap, 1e-4, 1e-15);
+    // on the face, at the uniform pressure's drilling radius 2r/3 from its centre
+    EXPECT_NEAR(out[j].point_b.z(), 1e-4, 1e-15);
+    EXPECT_NEAR((out[j].point_b - Eigen::Vector3d(0.3, -0.2, 1e-4)).norm(), 2.0 * r / 3.0, 1e-15);
+    centre += out[j].point_b / 4.0;
+  }
+  // spread symmetrically about the centre: no net moment of equal loads
+  EXPECT_LT((centre - Eigen::Vector3d(0.3, -0.2, 1e-4)).norm(), 1e-15);
+  // upside down: the +z face (features 6..9)
   const Eigen::Isometry3d down =
       Pose(Rotation(kPi, Eigen::Vector3d::UnitX()), {0.3, -0.2, 0.001 + 1e-4});
-  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, down, 1e-3, out), 1);
-  EXPECT_EQ(out[0].feature, 3);
+  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, down, 1e-3, out), 4);
+  EXPECT_EQ(out[0].feature, 6);
   EXPECT_NEAR(out[0].gap, 1e-4, 1e-15);
-  // a margin beyond the thickness still gives no patch for the face facing up
-  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, up, 1.0, out), 1);
+  // a margin beyond the thickness still gives no points for the face facing up
+  ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, up, 1.0, out), 4);
 }
 
 TEST(PlaneCylinder, CoinTiltedBy1e3IsTheRimPoint) {
@@ -123,7 +131,7 @@ TEST(PlaneCylinder, CoinTiltedBy1e3IsTheRimPoint) {
   ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, coin, pose, 1e-9, out), 1);
   EXPECT_TRUE(WellFormed(out[0]));
   EXPECT_EQ(out[0].feature, 0);
-  EXPECT_EQ(out[0].patch_radius, 0.0);
+  EXPECT_FALSE(out[0].face_point);
   EXPECT_NEAR(out[0].gap, 0.0, 1e-15);
   EXPECT_LT((out[0].point_b - pose * Eigen::Vector3d(0, -r, -l)).norm(), 1e-15);
 }
@@ -136,8 +144,10 @@ TEST(PlaneCylinder, FlatThresholdIsTheHeightDifferenceAcrossTheFace) {
     const double tilt = std::asin(factor * kFlatFaceTolerance / (2 * r));
     const Eigen::Isometry3d pose = Pose(Rotation(tilt, Eigen::Vector3d(1, 1, 0)), {0, 0, 0.01});
     ContactGeometry out[kMaxPairContacts];
-    ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, disc, pose, 1e-3, out), 1);
+    // flat: the four face points of the lower face (features 2..5); tilted: its rim point
+    ASSERT_EQ(CollidePlaneCylinder(kPlane, kGround, disc, pose, 1e-3, out), factor < 1.0 ? 4 : 1);
     EXPECT_EQ(out[0].feature, factor < 1.0 ? 2 : 0) << "factor " << factor;
+    EXPECT_EQ(out[0].face_point, factor < 1.0) << "factor " << factor;
   }
 }
 

@@ -39,7 +39,7 @@ void ExpectPlaneContact(const ContactGeometry& c, const Eigen::Isometry3d& plane
   EXPECT_NEAR(Height(plane, c.point_a), 0.0, kSurfaceTolerance);
   EXPECT_NEAR(SurfaceResidual(b, pose_b, c.point_b), 0.0, kSurfaceTolerance);
   EXPECT_NEAR(c.gap, Height(plane, c.point_b), kGapTolerance);
-  EXPECT_EQ(c.patch_radius, 0.0);
+  EXPECT_FALSE(c.face_point);
 }
 
 // Lowest point of the ellipsoid x = c + R S ω, |ω| = 1, by brute force over ω.

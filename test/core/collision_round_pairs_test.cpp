@@ -48,7 +48,7 @@ void ExpectContactOfRoundShapes(const ContactGeometry& c, const Shape& a,
   EXPECT_NEAR(ProjectionGap(a, pose_a, b, pose_b, c.normal), c.gap, kGapTolerance);
   EXPECT_NEAR(SurfaceResidual(a, pose_a, c.point_a), 0.0, kSurfaceTolerance);
   EXPECT_NEAR(SurfaceResidual(b, pose_b, c.point_b), 0.0, kSurfaceTolerance);
-  EXPECT_EQ(c.patch_radius, 0.0);
+  EXPECT_FALSE(c.face_point);
 }
 
 TEST(SphereSphere, MatchesDefinitionAtRandomPoses) {

@@ -126,7 +126,7 @@ TEST(CollisionTable, SwappingTheShapesFlipsTheResult) {
         EXPECT_LE((backward[k].point_b - forward[k].point_a).norm(), tolerance);
         EXPECT_LE((backward[k].normal + forward[k].normal).norm(), tolerance);
         EXPECT_EQ(backward[k].feature, forward[k].feature);
-        EXPECT_EQ(backward[k].patch_radius, forward[k].patch_radius);
+        EXPECT_EQ(backward[k].face_point, forward[k].face_point);
       }
     }
   }

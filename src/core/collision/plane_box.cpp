@@ -1,4 +1,4 @@
-// Plane–box: the corners, or one patch for a face lying flat.
+// Plane–box: the corners, or four face points for a face lying flat.
 #include "nonsmooth_sim/core/collision/plane_box.h"
 
 #include <cmath>
@@ -35,16 +35,25 @@ int CollidePlaneBox(const Shape& /*plane*/, const Eigen::Isometry3d& pose_plane,
 
   int count = 0;
   if (flat) {
-    // patch at the face centre c + (±h_j*) e_j*
-    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    offset[axis] = side == 1 ? h[axis] : -h[axis];
-    const ContactGeometry patch =
-        PlaneContact(pose_plane, pose_box * offset, /*feature=*/8 + 2 * axis + side,
-                     RectanglePatchRadius(h[p], h[q]));
-    if (patch.gap <= margin) out[count++] = patch;
+    // four points on the face c + (±h_j*) e_j* along its diagonals, at the distance R̄ of the
+    // rectangle from its centre: (±f h_p, ±f h_q) with f = R̄ / |(h_p, h_q)|
+    const double f = RectanglePatchRadius(h[p], h[q]) / std::hypot(h[p], h[q]);
+    ContactGeometry face[4];
+    for (int j = 0; j < 4; ++j) {
+      Eigen::Vector3d local = Eigen::Vector3d::Zero();
+      local[axis] = side == 1 ? h[axis] : -h[axis];
+      local[p] = (j & 1 ? f : -f) * h[p];
+      local[q] = (j & 2 ? f : -f) * h[q];
+      face[j] = PlaneContact(pose_plane, pose_box * local,
+                             /*feature=*/8 + 4 * (2 * axis + side) + j, /*face_point=*/true);
+    }
+    ShareFaceGap(face, 4);
+    if (face[0].gap <= margin) {
+      for (const ContactGeometry& point : face) out[count++] = point;
+    }
   }
   for (int i = 0; i < 8; ++i) {
-    // corner i lies on face (j*, bit j* of i): replaced by the patch when that face is flat
+    // corner i lies on face (j*, bit j* of i): replaced by the face points when that face is flat
     const int corner_side = (i >> axis) & 1;
     if (flat && corner_side == side) continue;
     // x_i = c + R_B (σ_i ∘ h)

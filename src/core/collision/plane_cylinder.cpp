@@ -1,4 +1,4 @@
-// Plane–cylinder: per face, its lowest rim point, or one patch when the face lies flat.
+// Plane–cylinder: per face, its lowest rim point, or four face points when the face lies flat.
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 
 #include "nonsmooth_sim/core/collision/plane_contact.h"
@@ -21,18 +21,26 @@ int CollidePlaneCylinder(const Shape& /*plane*/, const Eigen::Isometry3d& pose_p
     const double s = k == 0 ? -1.0 : 1.0;
     // face centre f_k = c + s_k l u
     const Eigen::Vector3d face_centre = pose_cylinder.translation() + s * cylinder.half_length * u;
-    ContactGeometry contact;
     if (!flat) {
       // rim point f_k − r n_⊥/|n_⊥|
-      contact = PlaneContact(pose_plane, face_centre - (r / sin_tilt) * n_perp, /*feature=*/k);
-    } else if (s * u_n < 0.0) {
-      // the flat face facing the plane: one patch at its centre
-      contact = PlaneContact(pose_plane, face_centre, /*feature=*/2 + k, DiscPatchRadius(r));
-    } else {
-      // the flat face facing away lies 2l above the other one
+      const ContactGeometry contact =
+          PlaneContact(pose_plane, face_centre - (r / sin_tilt) * n_perp, /*feature=*/k);
+      if (contact.gap <= margin) out[count++] = contact;
       continue;
     }
-    if (contact.gap <= margin) out[count++] = contact;
+    // the flat face facing away lies 2l above the other one
+    if (!(s * u_n < 0.0)) continue;
+    // the flat face facing the plane: four points f_k ± (2r/3) e_x, f_k ± (2r/3) e_y
+    const double rho = DiscPatchRadius(r);
+    ContactGeometry face[4];
+    for (int j = 0; j < 4; ++j) {
+      const Eigen::Vector3d axis = pose_cylinder.linear().col(j % 2);
+      const Eigen::Vector3d point = face_centre + (j < 2 ? rho : -rho) * axis;
+      face[j] = PlaneContact(pose_plane, point, /*feature=*/2 + 4 * k + j, /*face_point=*/true);
+    }
+    ShareFaceGap(face, 4);
+    if (face[0].gap > margin) continue;
+    for (const ContactGeometry& point : face) out[count++] = point;
   }
   return count;
 }

@@ -12,9 +12,12 @@
 //   feature  an id of the touching features, stable while the same features touch (a box corner,
 //            a cylinder rim or face, a capsule end): contacts and their warm starts and tangent
 //            frames are carried from step to step by (collider pair, feature);
-//   patch_radius  > 0 for a face lying flat on a face (a surface contact): the drilling radius R̄
-//            of the uniform pressure over that face (a disc of radius r: 2r/3); 0 for a point
-//            contact, whose R̄ comes from its law.
+//   face_point  true for one of the four points that stand for a face lying flat on a plane (a
+//            surface contact, plane_cylinder.h, plane_box.h): they sit on the face at its
+//            uniform-pressure drilling radius R̄ (a disc of radius r: 2r/3), so that together
+//            they carry the friction torque of the face (μNR̄ spinning, μN sliding) and resist
+//            tipping; such a point has no drilling component of its own. false: a point contact,
+//            whose R̄ comes from its law.
 // Points whose gap exceeds `margin` need not be returned (a pair function may return them).
 // A pair function never allocates, never throws and never reads global state.
 #ifndef NONSMOOTH_SIM_CORE_COLLISION_COLLISION_H_
@@ -35,7 +38,7 @@ struct ContactGeometry {
   Eigen::Vector3d point_b = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   int feature = 0;
-  double patch_radius = 0.0;
+  bool face_point = false;
 };
 
 /// Shapes a, b in ShapeType order, poses shape frame → world; writes at most kMaxPairContacts
@@ -59,7 +62,8 @@ int Collide(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
             const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out);
 
 /// Tolerance on the height difference across a face below which the face lies flat on a plane
-/// and becomes one patch contact [m]: see collision/plane_cylinder.h and plane_box.h.
+/// and becomes a face contact (four face points) [m]: see collision/plane_cylinder.h and
+/// plane_box.h.
 inline constexpr double kFlatFaceTolerance = 1e-6;
 
 }  // namespace nonsmooth_sim

@@ -5,15 +5,20 @@
 // The face facing the plane is the one whose outward normal is most opposite to n: axis
 // j* = argmax |m_j| with m = R_Bᵀ n, side = (m_j* < 0). Its height varies by
 // 2(|m_p| h_p + |m_q| h_q) across it (p, q the other axes); when that is ≤ kFlatFaceTolerance it
-// lies flat and gives one patch instead of its four corners:
+// lies flat and gives four face points (ContactGeometry::face_point) instead of its corners:
 //
-//   corner  point_b = x_i,                                            feature i (0..7);
-//   patch   point_b = c + (side ? +1 : −1) h_j* e_j*  (the face centre),
-//           patch_radius = RectanglePatchRadius(h_p, h_q),              feature 8 + f.
+//   corner      point_b = x_i,                                        feature i (0..7);
+//   face point  point_b = c + (side ? +1 : −1) h_j* e_j* ± f h_p e_p ± f h_q e_q,
+//               f = R̄ / |(h_p, h_q)|, R̄ = RectanglePatchRadius(h_p, h_q),   feature 8 + 4 face + j,
+//
+// on the face's diagonals at the distance R̄ of a uniform pressure from its centre: spinning,
+// their friction torque is μNR̄ (the uniform pressure's), sliding μN, and they resist tipping
+// (see plane_cylinder.h for why not one patch at the centre); they share the face's lowest
+// height as their gap (ShareFaceGap).
 //
 // For every point gap = n·(point_b − o_P), point_a = point_b − gap n (plane_contact.h); the
-// corners (of the flat face: the patch) with gap ≤ margin are returned, at most 8 (a flat face:
-// the patch and at most the 4 opposite corners).
+// points with gap ≤ margin are returned, at most 8 (a flat face: its 4 points and at most the 4
+// opposite corners).
 #ifndef NONSMOOTH_SIM_CORE_COLLISION_PLANE_BOX_H_
 #define NONSMOOTH_SIM_CORE_COLLISION_PLANE_BOX_H_
 

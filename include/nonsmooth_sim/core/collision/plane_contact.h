@@ -7,6 +7,7 @@
 #define NONSMOOTH_SIM_CORE_COLLISION_PLANE_CONTACT_H_
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <Eigen/Geometry>
 
 #include "nonsmooth_sim/core/collision/collision.h"
@@ -26,15 +27,27 @@ inline double PlaneHeight(const Eigen::Isometry3d& pose_plane, const Eigen::Vect
 /// The contact at point_b (a point of B's surface, world) with the plane, see the top.
 inline ContactGeometry PlaneContact(const Eigen::Isometry3d& pose_plane,
                                     const Eigen::Vector3d& point_b, int feature,
-                                    double patch_radius = 0.0) {
+                                    bool face_point = false) {
   ContactGeometry contact;
   contact.normal = PlaneNormal(pose_plane);
   contact.gap = PlaneHeight(pose_plane, point_b);
   contact.point_b = point_b;
   contact.point_a = point_b - contact.gap * contact.normal;
   contact.feature = feature;
-  contact.patch_radius = patch_radius;
+  contact.face_point = face_point;
   return contact;
+}
+
+/// The four points of a face lying flat touch as one: each gets the face's lowest height as its
+/// gap (they differ by at most kFlatFaceTolerance), so that round-off cannot leave some of them
+/// open while the face rests on the others; point_a follows (point_b − gap n).
+inline void ShareFaceGap(ContactGeometry* points, int count) {
+  double gap = points[0].gap;
+  for (int j = 1; j < count; ++j) gap = std::min(gap, points[j].gap);
+  for (int j = 0; j < count; ++j) {
+    points[j].gap = gap;
+    points[j].point_a = points[j].point_b - gap * points[j].normal;
+  }
 }
 
 }  // namespace nonsmooth_sim

@@ -6,16 +6,24 @@
 //   rim point   point_b = f_k − r n_⊥/|n_⊥|    (the face's lowest point),     feature k;
 //
 // unless the face lies flat: its height varies by 2r|n_⊥| across it, and when
-// 2r|n_⊥| ≤ kFlatFaceTolerance the face facing the plane (s_k u·n < 0) gives instead
+// 2r|n_⊥| ≤ kFlatFaceTolerance the face facing the plane (s_k u·n < 0) gives instead four face
+// points (ContactGeometry::face_point)
 //
-//   patch       point_b = f_k,  patch_radius = 2r/3,                           feature 2 + k,
+//   point_b = f_k ± ρ e_x, f_k ± ρ e_y,  ρ = 2r/3,                    features 2 + 4k + j,
 //
-// 2r/3 being the mean distance from the centre of a disc of radius r, the drilling radius R̄ of a
-// uniform pressure over it (a coin spinning flat then decays at (4/3)μg/r). A flat face facing
-// away from the plane gives nothing (it lies 2l above the opposite face). For every point
+// on the face at the radius 2r/3, the mean distance from the centre of a disc of radius r, i.e.
+// the drilling radius R̄ of a uniform pressure over it: spinning, their friction torque is μNρ =
+// (2/3)μNr, the uniform pressure's (a coin spinning flat decays at (4/3)μg/r); sliding, μN; and
+// they carry a tipping moment up to N·ρ, so a disc lying flat rests without rocking. The four
+// share the face's lowest height as their gap (ShareFaceGap: a flat face touches as one, so that
+// round-off cannot leave some of them open while the face rests on the others). (One patch
+// contact at the face centre with R̄ = 2r/3 gives the same torque but no tipping resistance: a
+// disc released 1e-4 rad off flat rocked on it for ever, switching between patch and rim.) A
+// flat face facing away from the plane gives nothing (it lies 2l above the opposite face). For every point
 // gap = n·(point_b − o_P), point_a = point_b − gap n (plane_contact.h); only points with
 // gap ≤ margin are returned, so a cylinder lying on its side (u ⊥ n) gives two rim contacts (the
-// ends of its line of contact), a tilted one its lowest rim point, a standing one one patch.
+// ends of its line of contact), a tilted one its lowest rim point, a standing one four face
+// points.
 // The rim point is smooth in the pose while the face is not flat: a cylinder rolling on its rim
 // keeps its feature and a continuous contact point.
 #ifndef NONSMOOTH_SIM_CORE_COLLISION_PLANE_CYLINDER_H_

@@ -1,0 +1,187 @@
+// The rattleback of Kane & Levinson (urdf/rattleback.urdf, config/rattleback.yaml;
+// docs/scenes.md section 2): ellipsoid 0.20 × 0.03 × 0.02 m, S 0.01 m below its centre, m = 1 kg,
+// Θ_xx = 2e-4, Θ_yy = 1.6e-3, Θ_zz = 1.7e-3, Θ_xy = −2e-5 kg m²; μ = 0.5, R = 0.5 mm.
+//
+// Which direction reverses (docs/scenes.md, linear stability of the rolling rattleback about the
+// steady spin ω = Ω ẑ): the growth rates of the two rocking modes change sign with Θ_xy Ω, and
+// the spin with sign(Ω) = sign(Θ_xy) is the unstable one. For the shipped body (Θ_xy < 0):
+// Ω = −5 rad/s (clockwise seen from above) has
+// Re λ = +1.75 s⁻¹ (pitch-like mode, 120 rad/s) and +0.17 s⁻¹ (16.8 rad/s): rocking grows within a
+// second or two and feeds the spin back; Ω = +5 rad/s has Re λ = −1.75 and −0.17 s⁻¹: the small
+// start tilt dies out. Θ_xy = 0 gives Re λ = 0 (no preference); mirroring Θ_xy swaps the two.
+//
+// Horizon: a spin of 5 rad/s is stopped by the drilling torque μ m g R̄ alone in
+// C Ω / (μ m g R̄) = 1.7e-3 · 5 / (0.5 · 9.81 · 2.95e-4) = 5.9 s, so the stable direction is
+// watched for 8 s: longer than it spins at all. The unstable one reverses within 2 s (1/0.17 s⁻¹
+// of the slow mode ≈ 6 s is an upper bound; the fast mode's 0.6 s sets the pace).
+//
+// Δt = 1e-4 s (rocking at up to 120 rad/s: 500 steps per period), implicit-midpoint gyroscopic
+// scheme (Δt|ω| = 5e-4, either would do; the implicit one keeps the energy check exact).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "scene_test_support.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+using scene_test::LoadShippedScene;
+using scene_test::Runner;
+using scene_test::WorldAngularVelocity;
+
+SimulatorOptions RattlebackOptions() {
+  SimulatorOptions options;
+  options.time_step = 1e-4;
+  options.gyroscopic = GyroscopicScheme::kImplicitMidpoint;
+  return options;
+}
+
+// The shipped start with the spin about the vertical set to `spin` [rad/s] (the shipped one is
+// −5), optionally with Θ_xy mirrored.
+Scene RattlebackScene(double spin, bool mirrored,
+                      const scene_io::UrdfSceneOptions& options = {}) {
+  Scene scene = LoadShippedScene("rattleback", options);
+  BodyState& s = scene.initial_state[0];
+  s.angular_velocity *= spin / -5.0;
+  if (mirrored) {
+    scene.bodies[0].inertia(0, 1) *= -1.0;
+    scene.bodies[0].inertia(1, 0) *= -1.0;
+  }
+  return scene;
+}
+
+struct SpinRun {
+  double min_spin = 0.0;  // min ω_z over the run [rad/s]
+  double max_spin = 0.0;  // max ω_z
+  double reversal_time = -1.0;  // first time ω_z has the opposite sign of the start, beyond 0.05
+  double spin_end = 0.0;
+  double max_energy_excess = 0.0;
+  double max_penetration = 0.0;
+  int unconverged_steps = 0;
+  double worst_residual = 0.0;
+  double first_unconverged = -1.0;
+  bool finite = true;
+};
+
+SpinRun RunSpin(const Scene& scene, double duration) {
+  Simulator sim(scene, RattlebackOptions());
+  Runner run(&sim);
+  const double start = WorldAngularVelocity(sim.state()[0]).z();
+  SpinRun r;
+  r.min_spin = r.max_spin = start;
+  while (sim.time() < duration && run.finite()) {
+    const StepStatistics& stats = run.Step();
+    if (!stats.solver.converged) {
+      if (r.unconverged_steps == 0) r.first_unconverged = sim.time();
+      ++r.unconverged_steps;
+      r.worst_residual = std::max(r.worst_residual, stats.solver.residual);
+    }
+    const double spin = WorldAngularVelocity(sim.state()[0]).z();
+    r.min_spin = std::min(r.min_spin, spin);
+    r.max_spin = std::max(r.max_spin, spin);
+    if (r.reversal_time < 0.0 && spin * start < 0.0 && std::abs(spin) > 0.05) {
+      r.reversal_time = sim.time();
+    }
+  }
+  r.spin_end = WorldAngularVelocity(sim.state()[0]).z();
+  r.max_energy_excess = run.max_energy_excess();
+  r.max_penetration = run.max_penetration();
+  r.finite = run.finite();
+  std::printf("start %+.2f rad/s: omega_z in [%+.3f, %+.3f], reversal at %.3f s, end %+.4f; "
+              "%d unconverged steps (worst residual %.2e, first at %.4f s)\n",
+              start, r.min_spin, r.max_spin, r.reversal_time, r.spin_end, r.unconverged_steps,
+              r.worst_residual, r.first_unconverged);
+  return r;
+}
+
+// Θ_xy < 0: spun clockwise (−5 rad/s, the shipped start) it reverses (measured: ω_z crosses
+// +0.05 rad/s at 1.675 s and reaches +0.92 rad/s), ...
+TEST(Rattleback, ClockwiseSpinReverses) {
+  const SpinRun r = RunSpin(LoadShippedScene("rattleback"), 5.0);
+  EXPECT_GT(r.reversal_time, 0.0);
+  EXPECT_LT(r.reversal_time, 3.0);
+  EXPECT_GT(r.max_spin, 0.5);
+  EXPECT_LE(r.max_energy_excess, 0.0);
+  EXPECT_LT(r.max_penetration, 1.1 * kGapCorrectionSlop);
+  EXPECT_TRUE(r.finite);
+}
+
+// ... spun counterclockwise (+5 rad/s) it does not: the spin runs down (the drilling torque) to 0
+// without changing sign within 8 s (measured min ω_z = 0 exactly: once stopped, the drilling
+// friction sticks).
+TEST(Rattleback, CounterclockwiseSpinDoesNotReverse) {
+  const SpinRun r = RunSpin(RattlebackScene(5.0, false), 8.0);
+  EXPECT_LT(r.reversal_time, 0.0);
+  EXPECT_GT(r.min_spin, -0.05);
+  EXPECT_LE(r.max_energy_excess, 0.0);
+  EXPECT_LT(r.max_penetration, 1.1 * kGapCorrectionSlop);
+  EXPECT_TRUE(r.finite);
+}
+
+// The sign of Θ_xy decides: the mirrored body (Θ_xy = +2e-5) reverses counterclockwise spin and
+// keeps clockwise spin.
+TEST(Rattleback, MirroredBodySwapsTheDirections) {
+  const SpinRun ccw = RunSpin(RattlebackScene(5.0, true), 3.0);
+  EXPECT_GT(ccw.reversal_time, 0.0);
+  EXPECT_LT(ccw.min_spin, -0.5);
+  const SpinRun cw = RunSpin(RattlebackScene(-5.0, true), 8.0);
+  EXPECT_LT(cw.reversal_time, 0.0);
+  EXPECT_LT(cw.max_spin, 0.05);
+}
+
+// Without friction (μ = 0) the contact force is vertical: its torque about S has no vertical
+// component, L_z and so the spin are kept and nothing reverses (measured: ω_z within ±0.005 of
+// −5 rad/s over 8 s while it rocks).
+TEST(Rattleback, FrictionlessDoesNotReverse) {
+  scene_io::UrdfSceneOptions options;
+  options.mu = 0.0;
+  const SpinRun r = RunSpin(LoadShippedScene("rattleback", options), 8.0);
+  EXPECT_LT(r.reversal_time, 0.0);
+  EXPECT_LT(r.max_spin, -4.9);
+  EXPECT_GT(r.min_spin, -5.1);
+  EXPECT_TRUE(r.finite);
+}
+
+// Frictionless rocking (the run above) never gains energy in a step.
+//
+// DISABLED, a known limitation of the time-stepping scheme (docs/dev-notes.md; run it with
+// --gtest_also_run_disabled_tests): measured at Δt = 1e-4, 3137 of 80 000
+// steps gain energy beyond round-off, at most 1.85e-9 J (t = 0.4948 s), 2.6e-6 J in all (the
+// rattleback's energy above rest is ~1e-2 J); the same with gap_correction = false (so it is the
+// paper's scheme, not the lift), and at Δt = 2e-5 at most 7.5e-11 J per step (O(Δt²)), 5.8e-7 J
+// in all. With ε = 0 a step changes the energy by Λᵀ(γ_E + γ_B)/2 exactly (W at q_M, gravity's
+// work cancels the potential change): a contact closed at q_M (12) whose γ_N^B > 0 (separating at
+// the start of the step, e.g. rocking off a drifted-in contact) and gets Λ_N > 0 adds
+// Λ_N γ_N^B / 2 > 0. Friction hides it in the other scenes (it dissipates far more).
+TEST(Rattleback, DISABLED_FrictionlessRockingNeverGainsEnergy) {
+  scene_io::UrdfSceneOptions options;
+  options.mu = 0.0;
+  Simulator sim(LoadShippedScene("rattleback", options), RattlebackOptions());
+  Runner run(&sim);
+  run.RunUntil(8.0);
+  std::printf("mu = 0: %d steps gain energy, at most %.3e J (t = %.4f s), %.3e J in all\n",
+              run.energy_excess_steps(), run.max_energy_excess(), run.max_energy_excess_time(),
+              run.total_energy_excess());
+  EXPECT_LE(run.max_energy_excess(), 0.0);
+}
+
+// Every contact solve of the reversing run converges.
+//
+// DISABLED, a known limitation of the contact solver (docs/dev-notes.md; run it with
+// --gtest_also_run_disabled_tests): measured 6 of the 50 000 steps of this run (55
+// of 80 000 over 8 s) end at max_iterations = 1000 with residual up to 6.2e6, the first at
+// t = 1.6185 s, around the moment the spin passes through zero: one contact, sphere set, Λ = (1.15e-3, −1.81e-4, −3.39e-5,
+// 3.65e-8), the drilling component inside its set (|Λ_τ| < R̄μΛ_N = 1.7e-7) and no component
+// flagged as projecting, yet γ_τ = 1.85e-4 rad/s ≠ 0: the Gauss-Seidel iteration does not settle
+// at the drilling stick/slip transition. The exact set does the same (44 steps); the explicit
+// gyroscopic scheme too (55 steps).
+TEST(Rattleback, DISABLED_ContactSolverConvergesThroughTheReversal) {
+  const SpinRun r = RunSpin(LoadShippedScene("rattleback"), 5.0);
+  EXPECT_EQ(r.unconverged_steps, 0) << "worst residual " << r.worst_residual << ", first at t = "
+                                    << r.first_unconverged << " s";
+}
+
+}  // namespace
+}  // namespace nonsmooth_sim
