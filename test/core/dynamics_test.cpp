@@ -483,8 +483,7 @@ struct TwoSidedContact {
   ContactJacobian jacobian;
 };
 
-TwoSidedContact MakeContact(const std::vector<BodyMotion>& bodies,
-                            const std::vector<BodyInertia>& inertia, int body_a, int body_b,
+TwoSidedContact MakeContact(const std::vector<BodyMotion>& bodies, int body_a, int body_b,
                             RandomMotion* random) {
   TwoSidedContact c;
   c.body_a = body_a;
@@ -678,9 +677,9 @@ TEST(ContactKinematics, ContactsOverTwoBodiesMatchTheWorldFrameRelativeVelocity)
   const Eigen::MatrixXd m_inverse = InverseMassMatrix(inertia);
   for (int trial = 0; trial < 100; ++trial) {
     const std::vector<BodyMotion> bodies = {RandomBodyMotion(&random), RandomBodyMotion(&random)};
-    const TwoSidedContact contacts[3] = {MakeContact(bodies, inertia, 0, 1, &random),
-                                         MakeContact(bodies, inertia, 1, 0, &random),
-                                         MakeContact(bodies, inertia, kWorld, 1, &random)};
+    const TwoSidedContact contacts[3] = {MakeContact(bodies, 0, 1, &random),
+                                         MakeContact(bodies, 1, 0, &random),
+                                         MakeContact(bodies, kWorld, 1, &random)};
     Eigen::MatrixXd w[3];
     for (int i = 0; i < 3; ++i) {
       const TwoSidedContact& c = contacts[i];
