@@ -41,7 +41,8 @@ void Simulator::ApplyImpulses(const Island& island, const Eigen::VectorXd& lambd
     const ClosedContact& c =
         closed_[static_cast<std::size_t>(island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
     Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
-    percussion.head(c.report.dimension) = lambda.segment(c.offset, c.report.dimension);
+    // (element loops: Eigen's dynamic-size segments cost more than the copy at 1-4 entries)
+    for (int d = 0; d < c.report.dimension; ++d) percussion[d] = lambda[c.offset + d];
     // W Λ on a side: sign (LᵀΛ, JᵀΛ)
     const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
     for (const ContactSide& side : c.jacobian.side) {
@@ -69,10 +70,9 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     const ClosedContact& c = contact(k);
     problem.contacts.push_back(ContactBlock{c.offset, c.report.law});
     // warm start from the previous step's percussions (zero if the contact was open then)
-    if (c.memory->closed_step == step_count_ - 1) {
-      lambda.segment(c.offset, c.report.dimension) = c.memory->percussion.head(c.report.dimension);
-    } else {
-      lambda.segment(c.offset, c.report.dimension).setZero();
+    const bool warm = c.memory->closed_step == step_count_ - 1;
+    for (int d = 0; d < c.report.dimension; ++d) {
+      lambda[c.offset + d] = warm ? c.memory->percussion[d] : 0.0;
     }
   }
 
@@ -116,8 +116,8 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
         const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
         gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
       }
-      problem.c.segment(c.offset, c.report.dimension) =
-          (gamma_free + c.report.law.restitution * c.gamma_begin).head(c.report.dimension);
+      const Eigen::Vector4d ci = gamma_free + c.report.law.restitution * c.gamma_begin;
+      for (int d = 0; d < c.report.dimension; ++d) problem.c[c.offset + d] = ci[d];
     }
     // a diverged state (huge ω) can overflow c (and G, with a body far away): not solved
     if (!problem.c.allFinite() || !problem.G.allFinite()) return false;
@@ -170,7 +170,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     stats->solver.friction_projected[i] = island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
     c.report.percussion.setZero();
-    c.report.percussion.head(c.report.dimension) = lambda.segment(c.offset, c.report.dimension);
+    for (int d = 0; d < c.report.dimension; ++d) c.report.percussion[d] = lambda[c.offset + d];
     c.memory->tangent1 = c.report.frame.tangent1;
     c.memory->percussion = c.report.percussion;
     c.memory->closed_step = step_count_;
