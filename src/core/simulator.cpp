@@ -45,7 +45,6 @@ void ValidateSimulatorOptions(const SimulatorOptions& options) {
   }
 }
 
-
 std::string ContactName(const Scene& scene, const ContactState& contact) {
   const int first = std::min(contact.collider_a, contact.collider_b);
   const int second = std::max(contact.collider_a, contact.collider_b);
@@ -148,9 +147,9 @@ void Simulator::Step(StepStatistics* out) {
     for (std::size_t b = 0; b < state_.size(); ++b) {
       BodyStep& w = body_step_[b];
       if (w.island >= 0) continue;
-      w.angular_end = ImplicitMidpointEuler(inertia_[b], state_[b].angular_velocity,
-                                            Eigen::Vector3d::Zero(), options_.time_step,
-                                            w.angular_free);
+      w.angular_end =
+          ImplicitMidpointEuler(inertia_[b], state_[b].angular_velocity, Eigen::Vector3d::Zero(),
+                                options_.time_step, w.angular_free);
     }
   }
   if (!finite || !ComputeEndState()) {
@@ -220,8 +219,7 @@ bool Simulator::ComputeEndState() {
     BodyStep& w = body_step_[b];
     w.linear_end = w.linear_free + inertia_[b].inverse_mass * w.linear_contact;
     w.position_end = w.position_mid + half_dt * w.linear_end;
-    w.orientation_end =
-        AdvanceOrientation(w.orientation_mid, w.angular_end, half_dt).normalized();
+    w.orientation_end = AdvanceOrientation(w.orientation_mid, w.angular_end, half_dt).normalized();
     w.rotation_end = w.orientation_end.toRotationMatrix();
     // the squared norms too: a state whose energy overflows is as lost as one with an inf
     finite = finite && std::isfinite(w.linear_end.squaredNorm()) &&
@@ -274,8 +272,7 @@ FrictionSet Simulator::FrictionSetOf(const std::string& name) const {
   if (collider >= 0) return scene_.colliders[static_cast<std::size_t>(collider)].law.friction_set;
   const std::size_t slash = name.find('/');
   const int first = slash == std::string::npos ? -1 : FindCollider(scene_, name.substr(0, slash));
-  const int second =
-      slash == std::string::npos ? -1 : FindCollider(scene_, name.substr(slash + 1));
+  const int second = slash == std::string::npos ? -1 : FindCollider(scene_, name.substr(slash + 1));
   if (first < 0 || second < 0 || first == second) {
     throw std::invalid_argument("unknown contact \"" + name +
                                 "\": expected a collider name or \"<collider>/<collider>\"");
@@ -323,8 +320,7 @@ void Simulator::SetContactLaw(int collider, const ContactLaw& law) {
     throw std::out_of_range("collider index " + std::to_string(collider) + " not in [0, " +
                             std::to_string(count) + ")");
   }
-  ValidateLaw("law of collider " + scene_.colliders[static_cast<std::size_t>(collider)].name,
-              law);
+  ValidateLaw("law of collider " + scene_.colliders[static_cast<std::size_t>(collider)].name, law);
   scene_.colliders[static_cast<std::size_t>(collider)].law = law;
   for (auto& [key, memory] : memory_) memory.percussion.setZero();
 }

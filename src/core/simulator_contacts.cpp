@@ -1,9 +1,9 @@
 // Contacts of a step, see simulator.h: the index set (12) at q_M through the broad phase and the
 // collision table, the islands of bodies the closed contacts link, and the gap correction at q_E.
 #include <algorithm>
-#include <tuple>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/simulator.h"
@@ -72,7 +72,8 @@ void Simulator::FindContacts(StepStatistics* stats) {
         }
       }
     }
-    if (needs_sweep_) spheres_.push_back(BoundingSphere{center, radius, static_cast<int>(i), c.body});
+    if (needs_sweep_)
+      spheres_.push_back(BoundingSphere{center, radius, static_cast<int>(i), c.body});
   }
   if (needs_sweep_) SweepAndPrune(&spheres_, &pairs_);
   // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep)
@@ -92,8 +93,8 @@ void Simulator::AddPairContacts(int first, int second) {
   const Eigen::Isometry3d& pose_b = collider_pose_[static_cast<std::size_t>(b)];
   ContactGeometry* geometry = geometry_.data();
   // points up to the hysteresis gap: the index set below decides which close
-  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,
-                            kContactHysteresis, geometry);
+  const int count =
+      Collide(collider_a.shape, pose_a, collider_b.shape, pose_b, kContactHysteresis, geometry);
   if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
   const ContactLaw law = PairLaw(first, second);
   // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
@@ -151,8 +152,8 @@ void Simulator::AddPairContacts(int first, int second) {
       if (r.law.restitution == 0.0) continue;  // γ^B enters c only through ε (16)
       const BodyState& state = state_[static_cast<std::size_t>(side.body)];
       // γ^B = W(q_M)ᵀu_B
-      c.gamma_begin += SideVelocity(c.jacobian, side, state.linear_velocity,
-                                    state.angular_velocity);
+      c.gamma_begin +=
+          SideVelocity(c.jacobian, side, state.linear_velocity, state.angular_velocity);
     }
   }
   // the pair's own memory: closed in this step
@@ -221,7 +222,8 @@ void Simulator::BuildIslands(StepStatistics* stats) {
   for (std::size_t i = 0; i < closed_count_; ++i) {
     ClosedContact& c = closed_[i];
     const int root = Root(&union_find_, c.report.body_b);
-    Island& island = islands_[static_cast<std::size_t>(body_step_[static_cast<std::size_t>(root)].island)];
+    Island& island =
+        islands_[static_cast<std::size_t>(body_step_[static_cast<std::size_t>(root)].island)];
     island_contacts_[static_cast<std::size_t>(island.first_contact + island.contact_count++)] =
         static_cast<int>(i);
     c.offset = island.size;
@@ -297,12 +299,13 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
     i = j;
   }
   // merge the records of one group: the highest end gap decides, with its normal
-  if (gap_groups_.size() > 1) std::sort(gap_groups_.begin(), gap_groups_.end(), [](const GapGroup& x, const GapGroup& y) {
-    if (x.body_b != y.body_b) return x.body_b < y.body_b;
-    if (x.body_a != y.body_a) return x.body_a < y.body_a;
-    if (x.static_collider != y.static_collider) return x.static_collider < y.static_collider;
-    return x.highest_gap > y.highest_gap;
-  });
+  if (gap_groups_.size() > 1)
+    std::sort(gap_groups_.begin(), gap_groups_.end(), [](const GapGroup& x, const GapGroup& y) {
+      if (x.body_b != y.body_b) return x.body_b < y.body_b;
+      if (x.body_a != y.body_a) return x.body_a < y.body_a;
+      if (x.static_collider != y.static_collider) return x.static_collider < y.static_collider;
+      return x.highest_gap > y.highest_gap;
+    });
   for (std::size_t k = 0; k < gap_groups_.size(); ++k) {
     const GapGroup& g = gap_groups_[k];
     if (k > 0 && g.body_b == gap_groups_[k - 1].body_b && g.body_a == gap_groups_[k - 1].body_a &&
@@ -356,7 +359,7 @@ bool Simulator::LevelOnPoints(std::size_t first, std::size_t last, const Contact
       ++n;
     }
   }
-  if (n < 2) return false;                       // one point: the lift of the group rule
+  if (n < 2) return false;                            // one point: the lift of the group rule
   if (!(-deepest > kGapCorrectionSlop)) return true;  // within the slop: nothing to do
   // the smallest displacement (Δr, Δθ) in the metric of M that brings every point to ≥ -slop:
   //   g_i + n_i·Δr + (r_i × n_i)·Δθ ≥ -slop,  Δr = Σ n_i λ_i / m,  Δθ = Θ_w⁻¹ Σ (r_i × n_i) λ_i,

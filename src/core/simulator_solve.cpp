@@ -38,8 +38,8 @@ void Simulator::ApplyImpulses(const Island& island, const Eigen::VectorXd& lambd
     w.angular_contact.setZero();
   }
   for (int k = 0; k < island.contact_count; ++k) {
-    const ClosedContact& c =
-        closed_[static_cast<std::size_t>(island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
+    const ClosedContact& c = closed_[static_cast<std::size_t>(
+        island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
     Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
     // (element loops: Eigen's dynamic-size segments cost more than the copy at 1-4 entries)
     for (int d = 0; d < c.report.dimension; ++d) percussion[d] = lambda[c.offset + d];
@@ -98,7 +98,8 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
         continue;
       }
       problem.G.block(a.offset, b.offset, da, db) = block.topLeftCorner(da, db);
-      if (j != i) problem.G.block(b.offset, a.offset, db, da) = block.topLeftCorner(da, db).transpose();
+      if (j != i)
+        problem.G.block(b.offset, a.offset, db, da) = block.topLeftCorner(da, db).transpose();
     }
   }
 
@@ -166,8 +167,10 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
   // the percussions: reported, and the warm start of the next step
   for (int k = 0; k < island.contact_count; ++k) {
     ClosedContact& c = contact(k);
-    const std::size_t i = static_cast<std::size_t>(island_contacts_[static_cast<std::size_t>(island.first_contact + k)]);
-    stats->solver.friction_projected[i] = island_stats_.friction_projected[static_cast<std::size_t>(k)];
+    const std::size_t i = static_cast<std::size_t>(
+        island_contacts_[static_cast<std::size_t>(island.first_contact + k)]);
+    stats->solver.friction_projected[i] =
+        island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
     c.report.percussion.setZero();
     for (int d = 0; d < c.report.dimension; ++d) c.report.percussion[d] = lambda[c.offset + d];

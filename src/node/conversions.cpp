@@ -1,12 +1,12 @@
 // Core state -> ROS messages. See conversions.h.
 #include "nonsmooth_sim/node/conversions.h"
 
-#include "nonsmooth_sim/core/tippe_top.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
+
+#include "nonsmooth_sim/core/tippe_top.h"
 
 namespace nonsmooth_sim::node {
 namespace {
@@ -169,7 +169,8 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     info.collision = b.name;
     info.body = scene.bodies[static_cast<std::size_t>(c.body_b)].name;
     info.other_collision = a.name;
-    info.other_body = c.body_a == kWorld ? "" : scene.bodies[static_cast<std::size_t>(c.body_a)].name;
+    info.other_body =
+        c.body_a == kWorld ? "" : scene.bodies[static_cast<std::size_t>(c.body_a)].name;
     info.feature = c.feature;
     // the slot frame of B's collider when this is its first contact
     info.frame.clear();
@@ -251,9 +252,10 @@ bool FillWrench(const Simulator& sim, std::size_t slot, const FrameNames& frames
       if (c.collider_a != collider && c.collider_b != collider) continue;
       // the force on B; on A it is the opposite
       const double sign = c.collider_b == collider ? 1.0 : -1.0;
-      const Eigen::Vector3d f = sign / dt *
-                                (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
-                                 c.percussion[2] * c.frame.tangent2);
+      const Eigen::Vector3d f =
+          sign / dt *
+          (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
+           c.percussion[2] * c.frame.tangent2);
       force += f;
       torque += (c.point - first->point).cross(f) + sign / dt * c.percussion[3] * c.frame.normal;
     }
@@ -284,9 +286,10 @@ void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time
       continue;
     }
     const ContactState& c = contacts[i];
-    const Eigen::Vector3d f = (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
-                               c.percussion[2] * c.frame.tangent2) /
-                              dt;
+    const Eigen::Vector3d f =
+        (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
+         c.percussion[2] * c.frame.tangent2) /
+        dt;
     Arrow(frames.world, stamp, "contact_force", static_cast<int>(i), c.point,
           c.point + force_scale * f, 1.0f, 0.55f, 0.0f, force);
     Arrow(frames.world, stamp, "drilling_torque", static_cast<int>(i), c.point,

@@ -1,13 +1,13 @@
 // Per-step monitors and the decimated CSV of `simulate`.
 #include "monitor.h"
 
-#include "nonsmooth_sim/core/tippe_top.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+
+#include "nonsmooth_sim/core/tippe_top.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
@@ -126,8 +126,7 @@ RunSummary RunMonitor::Finish(const Simulator& simulator) {
     const RigidBody& body = simulator.scene().bodies[b];
     const BodyState& state = simulator.state()[b];
     summary_.body_names.push_back(body.name);
-    summary_.final_link_position.push_back(state.position -
-                                           state.orientation * body.com_in_link);
+    summary_.final_link_position.push_back(state.position - state.orientation * body.com_in_link);
     summary_.final_state.push_back(state);
   }
   summary_.time_on_peg_s = static_cast<double>(peg_only_steps_) * time_step_;
@@ -138,8 +137,8 @@ RunSummary RunMonitor::Finish(const Simulator& simulator) {
 }
 
 CsvRecorder::CsvRecorder(const Simulator& simulator, long expected_rows) {
-  columns_ = {"t",  "x_s",   "y_s",    "z_s",     "qw",           "qx",
-              "qy", "qz",    "theta",  "energy",  "jellett",      "vertical_spin"};
+  columns_ = {"t",  "x_s", "y_s",   "z_s",    "qw",      "qx",
+              "qy", "qz",  "theta", "energy", "jellett", "vertical_spin"};
   const std::vector<Collider>& colliders = simulator.scene().colliders;
   for (std::size_t i = 0; i < colliders.size(); ++i) {
     if (colliders[i].body != 0 || colliders[i].shape.type != ShapeType::kSphere) continue;
@@ -175,7 +174,8 @@ void CsvRecorder::Record(double time, const Simulator& simulator, const StepStat
       if (c.collider_a == sphere || c.collider_b == sphere) contact = &c;
     }
     values_.push_back(contact != nullptr ? 1.0 : 0.0);
-    for (int k = 0; k < 4; ++k) values_.push_back(contact != nullptr ? contact->percussion[k] : 0.0);
+    for (int k = 0; k < 4; ++k)
+      values_.push_back(contact != nullptr ? contact->percussion[k] : 0.0);
   }
   values_.push_back(stats.solver.iterations);
   values_.push_back(stats.solver.converged ? 1.0 : 0.0);
@@ -186,8 +186,8 @@ bool CsvRecorder::Write(const std::string& path) const { return WriteCsv(columns
 BodyCsvRecorder::BodyCsvRecorder(const Simulator& simulator, long expected_rows) {
   columns_ = {"t"};
   for (const RigidBody& body : simulator.scene().bodies) {
-    for (const char* field : {"x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy",
-                              "wz"}) {
+    for (const char* field :
+         {"x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz"}) {
       columns_.push_back(body.name + "/" + field);
     }
   }
@@ -198,17 +198,26 @@ BodyCsvRecorder::BodyCsvRecorder(const Simulator& simulator, long expected_rows)
   values_.reserve(static_cast<std::size_t>(expected_rows) * columns_.size());
 }
 
-void BodyCsvRecorder::Record(double time, const Simulator& simulator,
-                             const StepStatistics& stats) {
+void BodyCsvRecorder::Record(double time, const Simulator& simulator, const StepStatistics& stats) {
   values_.push_back(time);
   for (std::size_t b = 0; b < simulator.scene().bodies.size(); ++b) {
     const BodyState& s = simulator.state()[b];
     // the link frame: r_S - A com_in_link; ω in the world
-    const Eigen::Vector3d link = s.position - s.orientation * simulator.scene().bodies[b].com_in_link;
+    const Eigen::Vector3d link =
+        s.position - s.orientation * simulator.scene().bodies[b].com_in_link;
     const Eigen::Vector3d omega = s.orientation * s.angular_velocity;
-    const double row[] = {link.x(), link.y(), link.z(), s.orientation.x(), s.orientation.y(),
-                          s.orientation.z(), s.orientation.w(), s.linear_velocity.x(),
-                          s.linear_velocity.y(), s.linear_velocity.z(), omega.x(), omega.y(),
+    const double row[] = {link.x(),
+                          link.y(),
+                          link.z(),
+                          s.orientation.x(),
+                          s.orientation.y(),
+                          s.orientation.z(),
+                          s.orientation.w(),
+                          s.linear_velocity.x(),
+                          s.linear_velocity.y(),
+                          s.linear_velocity.z(),
+                          omega.x(),
+                          omega.y(),
                           omega.z()};
     values_.insert(values_.end(), std::begin(row), std::end(row));
   }

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "nonsmooth_sim/core/contact/contact_frame.h"
+#include "nonsmooth_sim/core/overlaps.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "scene_builders.h"
 
@@ -44,7 +45,8 @@ TEST(ContactFrame, IsOrthonormalRightHandedAndFollowsThePreviousTangent) {
     }
   }
   // a hint along the normal falls back to the world axis least aligned with it
-  const ContactFrame f = MakeContactFrame(Eigen::Vector3d::UnitX(), nullptr, Eigen::Vector3d::UnitX());
+  const ContactFrame f =
+      MakeContactFrame(Eigen::Vector3d::UnitX(), nullptr, Eigen::Vector3d::UnitX());
   EXPECT_NEAR(f.tangent1.dot(Eigen::Vector3d::UnitX()), 0.0, 1e-14);
 }
 
@@ -83,8 +85,7 @@ TEST(ContactFrame, TurnsSmoothlyAlongARollingPath) {
       largest_turn = std::max(largest_turn, (f.tangent1 - last_t1).norm());
       // carried over: the previous tangent projected onto the new tangent plane (a frame made
       // afresh from the world-x hint would differ once the normal has turned about the path)
-      const Eigen::Vector3d carried =
-          (last_t1 - last_t1.dot(f.normal) * f.normal).normalized();
+      const Eigen::Vector3d carried = (last_t1 - last_t1.dot(f.normal) * f.normal).normalized();
       ASSERT_LT((f.tangent1 - carried).norm(), 1e-12) << "step " << k;
     }
     last_t1 = f.tangent1;
@@ -153,7 +154,8 @@ TEST(BodyBody, HeadOnImpactExchangesVelocitiesAndConservesMomentum) {
     const double p0 = 0.2 * (1.0 - 0.5);
     for (int k = 0; k < 1000; ++k) {
       sim.Step();
-      const double p = 0.2 * (sim.state()[0].linear_velocity.x() + sim.state()[1].linear_velocity.x());
+      const double p =
+          0.2 * (sim.state()[0].linear_velocity.x() + sim.state()[1].linear_velocity.x());
       ASSERT_NEAR(p, p0, 1e-15) << "step " << k;
     }
     const double v0 = sim.state()[0].linear_velocity.x();
@@ -192,6 +194,49 @@ TEST(BodyBody, AStackOfThreeStaysStacked) {
     EXPECT_NEAR(s.position.z(), r + 2.0 * r * b, 1e-5) << b;
     EXPECT_LT(s.linear_velocity.norm(), 1e-6) << b;
   }
+}
+
+TEST(Overlaps, ReportsThePairsThatPenetrateAtTheStartWithTheirDepth) {
+  // ball0 1 mm into ball1, ball1 resting on the ground 1e-7 m deep (below the warning depth),
+  // ball2 2 mm into the ground; colliders on one body never overlap each other
+  Scene scene;
+  ContactLaw law;
+  const double r = 0.05;
+  const Eigen::Vector3d centres[3] = {
+      {0.0, 0.0, 0.2}, {0.0, 0.0, 0.2 - 2 * r + 1e-3}, {1.0, 0.0, r - 2e-3}};
+  for (int b = 0; b < 3; ++b) {
+    scene.bodies.push_back(Ball("ball" + std::to_string(b), 1.0, r));
+    scene.colliders.push_back(
+        SphereCollider("ball" + std::to_string(b), b, Eigen::Vector3d::Zero(), r, law));
+    BodyState s;
+    s.position = centres[b];
+    scene.initial_state.push_back(s);
+  }
+  scene.initial_state[1].position.z() = r - 1e-7;
+  scene.initial_state[0].position.z() = scene.initial_state[1].position.z() + 2 * r - 1e-3;
+  scene.colliders.push_back(
+      SphereCollider("ball0_twin", 0, Eigen::Vector3d(0.0, 0.0, -0.01), r, law));
+  AddGround(&scene);
+  const std::vector<Overlap> overlaps =
+      FindOverlaps(scene, scene.initial_state, kOverlapWarningDepth);
+  ASSERT_EQ(overlaps.size(), 3u);
+  // ball0/ball1 1 mm, ball0_twin/ball1 1 mm + 1 cm, ball2/ground 2 mm; not ball1/ground (1e-7 m)
+  const int ground = FindCollider(scene, "ground");
+  bool seen[3] = {false, false, false};
+  for (const Overlap& o : overlaps) {
+    EXPECT_LT(o.collider_a, o.collider_b);
+    if (o.collider_a == 0 && o.collider_b == 1) {
+      EXPECT_NEAR(o.depth, 1e-3, 1e-12);
+      seen[0] = true;
+    } else if (o.collider_a == 1 && o.collider_b == 3) {
+      EXPECT_NEAR(o.depth, 1e-3 + 0.01, 1e-12);
+      seen[1] = true;
+    } else if (o.collider_a == 2 && o.collider_b == ground) {
+      EXPECT_NEAR(o.depth, 2e-3, 1e-12);
+      seen[2] = true;
+    }
+  }
+  EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
 }
 
 }  // namespace
