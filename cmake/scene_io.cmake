@@ -15,25 +15,6 @@ target_link_libraries(nonsmooth_sim_scene_io
 set_target_properties(nonsmooth_sim_scene_io PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # ---------------------------------------------------------------------------------------------
-# Tests: every test/scene_io/*_test.cpp is one GoogleTest executable, one ctest entry per TEST
-# (the pattern of the core tests; the `tests` target builds them).
-enable_testing()
-find_package(GTest REQUIRED)
-include(GoogleTest)
-if(NOT TARGET tests)
-  add_custom_target(tests)  # catkin reuses it when ROS is on
-endif()
-file(GLOB NONSMOOTH_SIM_SCENE_IO_TESTS CONFIGURE_DEPENDS
-  ${PROJECT_SOURCE_DIR}/test/scene_io/*_test.cpp)
-foreach(test_source ${NONSMOOTH_SIM_SCENE_IO_TESTS})
-  get_filename_component(test_name ${test_source} NAME_WE)
-  set(test_name scene_io_${test_name})  # urdf_scene_test is also a name of the node's tests
-  add_executable(${test_name} EXCLUDE_FROM_ALL ${test_source})
-  target_link_libraries(${test_name} PRIVATE nonsmooth_sim_scene_io GTest::gtest GTest::gtest_main)
-  target_compile_definitions(${test_name} PRIVATE
-    NONSMOOTH_SIM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-  set_target_properties(${test_name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/test_bin)
-  add_dependencies(tests ${test_name})
-  gtest_discover_tests(${test_name} TEST_PREFIX "scene_io."
-    DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60)
-endforeach()
+# Tests: every test/scene_io/*_test.cpp is one GoogleTest executable scene_io_<file> (the node
+# has a urdf_scene_test of its own), ctest entries "scene_io.<Suite>.<Test>".
+nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
