@@ -101,6 +101,10 @@ inline constexpr int kLevellingSweeps = 30;
 /// for a step (a hop of g Δt). A contact that separates has Λ = 0 whether it is in the index set
 /// or not (no adhesion; its friction bound μΛ_N is 0), so this changes nothing but the catching
 /// of a body that comes back within 1 nm of where it left: far below every scale of the scenes.
+/// The broad phase has no such margin: a sphere on a plane (its bounding sphere is the shape) keeps
+/// g ≤ 0 exactly. Widening it by the hysteresis changed the Tippe-Top's θ(t) by up to 1.2e-5 rad
+/// (a contact kept closed at a positive gap stops the gap correction's lift of the other sphere),
+/// so the margin is left to the bodies with faces and corners, where it was needed.
 inline constexpr double kContactHysteresis = 1e-9;
 
 /// Δt·|ω| up to which the explicit gyroscopic term is considered safe (StepStatistics::
