@@ -105,11 +105,25 @@ FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame) {
     names.slots.push_back(static_cast<int>(i));
     names.contacts.push_back(GraphName(scene.colliders[i].name) + "_contact");
   }
+  names.slot_of_collider.assign(scene.colliders.size(), -1);
+  for (std::size_t k = 0; k < names.slots.size(); ++k) {
+    names.slot_of_collider[static_cast<std::size_t>(names.slots[k])] = static_cast<int>(k);
+  }
   return names;
 }
 
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot) {
   return sim.FindContact(frames.slots[slot]);
+}
+
+void FirstContacts(const Simulator& sim, std::vector<int>* first) {
+  first->assign(sim.scene().colliders.size(), -1);
+  const std::vector<ContactState>& contacts = sim.contacts();
+  for (int i = static_cast<int>(contacts.size()) - 1; i >= 0; --i) {
+    const ContactState& c = contacts[static_cast<std::size_t>(i)];
+    (*first)[static_cast<std::size_t>(c.collider_a)] = i;
+    (*first)[static_cast<std::size_t>(c.collider_b)] = i;
+  }
 }
 
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state) {
@@ -159,6 +173,9 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
   msg->solver_residual = last_step.solver.residual;
   msg->solver_converged = last_step.solver.converged;
   const std::vector<ContactState>& contacts = sim.contacts();
+  // per collider its first contact: the slot frame is named at that one (O(contacts + colliders))
+  std::vector<int> first;
+  FirstContacts(sim, &first);
   msg->contacts.resize(contacts.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const ContactState& c = contacts[i];
@@ -174,10 +191,9 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     info.feature = c.feature;
     // the slot frame of B's collider when this is its first contact
     info.frame.clear();
-    for (std::size_t k = 0; k < frames.slots.size(); ++k) {
-      if (frames.slots[k] == c.collider_b && sim.FindContact(c.collider_b) == &c) {
-        info.frame = frames.contacts[k];
-      }
+    const int slot = frames.slot_of_collider[static_cast<std::size_t>(c.collider_b)];
+    if (slot >= 0 && first[static_cast<std::size_t>(c.collider_b)] == static_cast<int>(i)) {
+      info.frame = frames.contacts[static_cast<std::size_t>(slot)];
     }
     info.friction_set = std::string(FrictionSetName(c.law.friction_set));
     info.mu = c.law.mu;
@@ -216,12 +232,16 @@ void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::T
     t.transform.translation.z = pose.position.z;
     t.transform.rotation = pose.orientation;
   }
+  std::vector<int> first;
+  FirstContacts(sim, &first);
   for (std::size_t i = 0; i < frames.slots.size(); ++i, ++k) {
     geometry_msgs::TransformStamped& t = msg->transforms[k];
     t.header.stamp = stamp;
     t.header.frame_id = frames.world;
     t.child_frame_id = frames.contacts[i];
-    if (const ContactState* c = SlotContact(sim, frames, i)) {
+    const int index = first[static_cast<std::size_t>(frames.slots[i])];
+    if (index >= 0) {
+      const ContactState* c = &sim.contacts()[static_cast<std::size_t>(index)];
       // at the contact point, axes (t1, t2, n)
       Set(c->point, &t.transform.translation);
       Set(FrameRotation(c->frame), &t.transform.rotation);

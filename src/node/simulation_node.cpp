@@ -62,8 +62,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
     : parameters_(std::move(parameters)),
       urdf_(std::move(urdf)),
       initial_body_(ResolveBody(urdf_, parameters_.initial_body)),
-      configured_scene_(ConfiguredScene(urdf_, initial_body_, parameters_.initial,
-                                        parameters_.initial_state)),
+      configured_scene_(
+          ConfiguredScene(urdf_, initial_body_, parameters_.initial, parameters_.initial_state)),
       frames_(MakeFrameNames(urdf_.scene, parameters_.world_frame)),
       nh_(nh),
       private_nh_(private_nh),
@@ -111,15 +111,16 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   PublishClock(/*flush=*/true);
   anchor_wall_ = unpaused_at_ = previous_diagnostics_wall_ = Clock::now();
 
-  ROS_INFO("nonsmooth_sim: %zu bodies, %zu collisions, friction set %s, time step %g s, "
-           "real-time factor %g%s, %s",
-           urdf_.scene.bodies.size(), urdf_.scene.colliders.size(), FrictionSetSummary().c_str(),
-           parameters_.simulator.time_step, parameters_.real_time_factor,
-           parameters_.real_time_factor == 0.0 ? " (as fast as possible)" : "",
-           paused_ ? "paused" : "running");
+  ROS_INFO(
+      "nonsmooth_sim: %zu bodies, %zu collisions, friction set %s, time step %g s, "
+      "real-time factor %g%s, %s",
+      urdf_.scene.bodies.size(), urdf_.scene.colliders.size(), FrictionSetSummary().c_str(),
+      parameters_.simulator.time_step, parameters_.real_time_factor,
+      parameters_.real_time_factor == 0.0 ? " (as fast as possible)" : "",
+      paused_ ? "paused" : "running");
   if (pace_ != parameters_.real_time_factor) {
-    ROS_INFO("nonsmooth_sim: real-time factor limited to %g by ~max_wall_publish_rate %g Hz",
-             pace_, parameters_.max_wall_publish_rate);
+    ROS_INFO("nonsmooth_sim: real-time factor limited to %g by ~max_wall_publish_rate %g Hz", pace_,
+             parameters_.max_wall_publish_rate);
   }
   integrator_ = std::thread(&SimulationNode::Run, this);
 }
@@ -201,21 +202,23 @@ std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point dea
 void SimulationNode::StepOnce() {
   last_step_ = sim_->Step();
   if (!last_step_.state_finite) {
-    ROS_ERROR_ONCE("nonsmooth_sim: the state became non-finite at t = %.6f s (dt*|omega| = %.3g, "
-                   "~gyroscopic %s): paused at the last finite state; call ~reset to go on",
-                   sim_->time() + sim_->options().time_step, last_step_.max_dt_omega,
-                   std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
+    ROS_ERROR_ONCE(
+        "nonsmooth_sim: the state became non-finite at t = %.6f s (dt*|omega| = %.3g, "
+        "~gyroscopic %s): paused at the last finite state; call ~reset to go on",
+        sim_->time() + sim_->options().time_step, last_step_.max_dt_omega,
+        std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
     Pause("state not finite");
     return;
   }
   if (last_step_.explicit_gyroscopic_unsafe) {
     const double dt = sim_->options().time_step;
-    ROS_WARN_ONCE("nonsmooth_sim: warning: explicit gyroscopic term outside its safe range "
-                  "dt*|omega| <= %g (reached %.2g at t = %.4g s): energy can grow by "
-                  "O((dt*|omega|)^2) per step and diverge; use ~gyroscopic implicit_midpoint or "
-                  "~time_step <= %.1e",
-                  kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, sim_->time(),
-                  kExplicitGyroscopicMaxDtOmega * dt / last_step_.max_dt_omega);
+    ROS_WARN_ONCE(
+        "nonsmooth_sim: warning: explicit gyroscopic term outside its safe range "
+        "dt*|omega| <= %g (reached %.2g at t = %.4g s): energy can grow by "
+        "O((dt*|omega|)^2) per step and diverge; use ~gyroscopic implicit_midpoint or "
+        "~time_step <= %.1e",
+        kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, sim_->time(),
+        kExplicitGyroscopicMaxDtOmega * dt / last_step_.max_dt_omega);
   }
   period_.Add(last_step_);
   total_.Add(last_step_);
@@ -226,13 +229,14 @@ void SimulationNode::StepOnce() {
     duration_reached_ = true;
     Pause("duration reached");
     const double steps = static_cast<double>(total_.steps);
-    ROS_INFO("nonsmooth_sim: reached t = %.6f s after %lld steps: %.3f s wall running "
-             "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
-             "%lld unconverged steps",
-             sim_->time(), static_cast<long long>(total_.steps), run_wall_,
-             run_wall_ > 0.0 ? sim_->time() / run_wall_ : 0.0,
-             1e6 * (total_.busy_wall - total_.publish_wall) / steps,
-             1e6 * total_.publish_wall / steps, static_cast<long long>(total_.unconverged));
+    ROS_INFO(
+        "nonsmooth_sim: reached t = %.6f s after %lld steps: %.3f s wall running "
+        "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
+        "%lld unconverged steps",
+        sim_->time(), static_cast<long long>(total_.steps), run_wall_,
+        run_wall_ > 0.0 ? sim_->time() / run_wall_ : 0.0,
+        1e6 * (total_.busy_wall - total_.publish_wall) / steps, 1e6 * total_.publish_wall / steps,
+        static_cast<long long>(total_.unconverged));
   }
 }
 
@@ -320,8 +324,9 @@ void SimulationNode::PublishContacts() {
     contacts_pub_.publish(contacts_msg_);
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
+  FirstContacts(*sim_, &first_contact_);
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    const bool closed = SlotContact(*sim_, frames_, i) != nullptr;
+    const bool closed = first_contact_[static_cast<std::size_t>(frames_.slots[i])] >= 0;
     if ((closed || wrench_closed_[i]) && wrench_pubs_[i].getNumSubscribers() > 0) {
       FillWrench(*sim_, i, frames_, stamp, &wrench_msg_);
       wrench_pubs_[i].publish(wrench_msg_);

@@ -29,11 +29,16 @@ struct FrameNames {
   std::string world;                  ///< fixed frame
   std::vector<int> slots;             ///< the colliders on bodies, in scene order
   std::vector<std::string> contacts;  ///< per slot: "<collision name>_contact"
+  std::vector<int> slot_of_collider;  ///< per collider: its slot, -1 for a static one
 };
 FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
 
-/// The first closed contact of slot `slot`, or nullptr.
+/// The first closed contact of slot `slot`, or nullptr (a scan of the contacts: O(contacts)).
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot);
+
+/// Per collider the index in sim.contacts() of its first contact, -1 without one: one pass over
+/// the contacts, so that a message over every slot costs O(contacts + colliders).
+void FirstContacts(const Simulator& sim, std::vector<int>* first);
 
 /// A ROS graph name made of [A-Za-z0-9_] (other characters become '_').
 std::string GraphName(const std::string& name);

@@ -138,6 +138,7 @@ class SimulationNode {
   Clock::time_point last_clock_wall_;
   std::vector<bool> wrench_closed_;  ///< per slot: had a contact at the last publish
   std::size_t markers_count_ = 0;     ///< contacts drawn by the last marker message
+  std::vector<int> first_contact_;    ///< per collider its first contact (FirstContacts)
   double pace_ = 0.0;  ///< real-time factor the integrator keeps (0: as fast as possible)
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;
