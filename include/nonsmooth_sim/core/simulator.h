@@ -32,7 +32,7 @@
 //    changes by less than the solver's relative tolerance (or round-off), at most
 //    kMaxGyroscopicPasses passes. Torque-free it conserves ½ωᵀΘω and |Θω| to round-off.
 //
-// Properties of the scheme worth knowing (measured on the Tippe-Top, see the README):
+// Properties of the scheme worth knowing (measured on the Tippe-Top, see docs/simulate.md):
 //  - It is velocity-level: (14) constrains γ_N at the end of the step, not g. A contact point that
 //    moves over a curved surface (rolling, precessing) drifts into the floor by about
 //    ½Δt²·(dW/dt)ᵀu per step, linearly in time: up to 0.22 mm on the peg after 8 s at Δt = 1e-4,

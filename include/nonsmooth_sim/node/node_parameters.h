@@ -1,4 +1,4 @@
-// The node's private parameters: read once, with defaults, validated (README, "Parameters").
+// The node's private parameters: read once, with defaults, validated (docs/ros.md, "Parameters").
 #ifndef NONSMOOTH_SIM_NODE_NODE_PARAMETERS_H_
 #define NONSMOOTH_SIM_NODE_NODE_PARAMETERS_H_
 

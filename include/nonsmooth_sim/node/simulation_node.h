@@ -1,4 +1,4 @@
-// The ROS node: serves a core Simulator to ROS (README, "The ROS node"). It converts between
+// The ROS node: serves a core Simulator to ROS (docs/ros.md). It converts between
 // messages and the core and holds no physics.
 //
 // Threads: the integrator runs on its own thread, paced by the wall clock (sim time = wall time ×
