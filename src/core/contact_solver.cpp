@@ -187,14 +187,16 @@ void ValidateSolverOptions(const SolverOptions& options) {
   if (!IsFiniteNonNegative(options.tolerance_abs)) {
     ThrowNotFiniteNonNegative("SolverOptions.tolerance_abs", " [N s]", options.tolerance_abs);
   }
-  if (options.max_iterations < 1) {
-    throw std::invalid_argument("SolverOptions.max_iterations: must be >= 1, got " +
+  if (options.max_iterations < 1 || options.max_iterations > kMaxSolverIterations) {
+    throw std::invalid_argument("SolverOptions.max_iterations: must be >= 1 and <= " +
+                                std::to_string(kMaxSolverIterations) + ", got " +
                                 std::to_string(options.max_iterations));
   }
-  if (!(options.relaxation > 0.0 && options.relaxation < 2.0)) {
+  if (!(options.relaxation >= kMinRelaxation && options.relaxation < 2.0)) {
     throw std::invalid_argument(
-        "SolverOptions.relaxation (alpha of (43)): must be in the open interval (0, 2), got " +
-        Describe(options.relaxation));
+        "SolverOptions.relaxation (alpha of (43)): must be in [" + Describe(kMinRelaxation) +
+        ", 2) (the convergence interval (0, 2), bounded below because the iteration contracts "
+        "by only 1 - alpha per step), got " + Describe(options.relaxation));
   }
 }
 

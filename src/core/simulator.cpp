@@ -38,6 +38,13 @@ void ValidateSimulatorOptions(const SimulatorOptions& options) {
       << ", " << kMaxTimeStep << "] s";
     throw std::invalid_argument(s.str());
   }
+  // the tighter cap of a simulation first, so that the message names it
+  if (options.solver.max_iterations > kMaxSimulatorIterations) {
+    throw std::invalid_argument("SimulatorOptions.solver.max_iterations: must be >= 1 and <= " +
+                                std::to_string(kMaxSimulatorIterations) +
+                                " in a simulation (the cap multiplies the work of every step), "
+                                "got " + std::to_string(options.solver.max_iterations));
+  }
   ValidateSolverOptions(options.solver);
   if (GyroscopicSchemeName(options.gyroscopic) == "unknown") {
     throw std::invalid_argument(

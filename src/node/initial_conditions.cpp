@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -64,8 +65,19 @@ void ValidateInitialConditions(const InitialConditions& initial) {
                                   std::to_string(*initial.inclination));
     }
   }
-  if (initial.spin) RequireFinite("spin", std::isfinite(*initial.spin));
-  if (initial.position) RequireFinite("position", initial.position->allFinite());
+  if (initial.spin) {
+    RequireFinite("spin", std::isfinite(*initial.spin));
+    if (std::abs(*initial.spin) > scene_io::kMaxInitialAngularSpeed) {
+      std::ostringstream s;
+      s << "spin = " << *initial.spin << " rad/s: |spin| must be <= "
+        << scene_io::kMaxInitialAngularSpeed << " rad/s (finite kinetic energy, bounded dt*|w|)";
+      throw std::invalid_argument(s.str());
+    }
+  }
+  if (initial.position) {
+    RequireFinite("position", initial.position->allFinite());
+    scene_io::CheckInitialPosition("position", *initial.position);
+  }
   if (initial.orientation) {
     RequireFinite("orientation", initial.orientation->coeffs().allFinite());
     if (initial.orientation->coeffs().squaredNorm() == 0.0) {
@@ -74,9 +86,11 @@ void ValidateInitialConditions(const InitialConditions& initial) {
   }
   if (initial.linear_velocity) {
     RequireFinite("linear_velocity", initial.linear_velocity->allFinite());
+    scene_io::CheckInitialLinearVelocity("linear_velocity", *initial.linear_velocity);
   }
   if (initial.angular_velocity) {
     RequireFinite("angular_velocity", initial.angular_velocity->allFinite());
+    scene_io::CheckInitialAngularVelocity("angular_velocity", *initial.angular_velocity);
   }
 }
 

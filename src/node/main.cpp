@@ -19,7 +19,10 @@ int main(int argc, char** argv) {
     NodeParameters parameters = ReadNodeParameters(nh, private_nh);
     UrdfScene urdf = SceneFromUrdf(parameters.urdf_xml, parameters.scene);
     SimulationNode node(nh, private_nh, std::move(parameters), std::move(urdf));
-    ros::spin();
+    // two spinner threads: a long ~step (it runs in chunks) does not hold up the other services
+    ros::AsyncSpinner spinner(2);
+    spinner.start();
+    ros::waitForShutdown();
   } catch (const std::exception& e) {
     ROS_FATAL_STREAM(e.what());
     return 1;

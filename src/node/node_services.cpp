@@ -1,13 +1,28 @@
 // The node's services. Every setter validates first and changes nothing on bad input; changes
 // happen with the simulator mutex held, i.e. between two steps.
+#include <chrono>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "nonsmooth_sim/node/initial_conditions.h"
 #include "nonsmooth_sim/node/simulation_node.h"
 
 namespace nonsmooth_sim::node {
 namespace {
+
+// ~step runs at most this many steps per call (10 s of simulated time at the default Δt; the
+// shipped scenes take 0.02-0.1 s of wall time for it). A larger request is rejected: the service
+// thread is busy for the whole call, so an unbounded count (uint32 allows 4.3e9) would freeze the
+// node's services, diagnostics and shutdown.
+constexpr std::uint32_t kMaxStepsPerCall = 100000;
+// ~step releases the simulator mutex after at most this much wall time of stepping [s] (the
+// integrator's chunk, simulation_node.cpp), so that no one waits for it longer than that.
+constexpr double kStepChunkWall = 0.01;
+// How often (in steps) ~step checks the wall clock.
+constexpr std::uint32_t kStepWallCheck = 16;
 
 // A field of a request given as an array: empty = not set, else exactly `count` values.
 template <typename T>
@@ -62,7 +77,7 @@ bool SimulationNode::OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Respo
 }
 
 bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Response& res) {
-  const auto lock = LockForService();
+  auto lock = LockForService();
   res.sim_time = sim_->time();
   res.stamp = StampOf(sim_->time());
   if (!paused_) {
@@ -70,23 +85,63 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     res.status_message = "the simulation is running: call ~pause_physics first";
     return true;
   }
-  if (req.steps < 1) {
+  if (req.steps < 1 || req.steps > kMaxStepsPerCall) {
     res.success = false;
-    res.status_message = "steps must be >= 1";
+    res.status_message = "steps must be >= 1 and <= " + std::to_string(kMaxStepsPerCall) +
+                         " per call (got " + std::to_string(req.steps) +
+                         "); nothing changed";
     return true;
   }
-  const Clock::time_point start = Clock::now();
-  for (std::uint32_t k = 0; k < req.steps; ++k) StepOnce();
-  const double busy = std::chrono::duration<double>(Clock::now() - start).count();
-  period_.busy_wall += busy;
-  total_.busy_wall += busy;
+  // in chunks of at most kStepChunkWall, releasing the mutex in between (as the integrator does):
+  // a service waiting for it is served between two steps
+  std::uint32_t done = 0;
+  bool failed = false;  // a step did not advance the time: it threw or diverged
+  const char* interrupted = nullptr;
+  while (done < req.steps) {
+    const Clock::time_point start = Clock::now();
+    const Clock::time_point deadline =
+        start + std::chrono::duration_cast<Clock::duration>(
+                    std::chrono::duration<double>(kStepChunkWall));
+    while (done < req.steps) {
+      const double before = sim_->time();
+      StepOnce();
+      if (sim_->time() == before) {
+        failed = true;
+        break;
+      }
+      ++done;
+      if (done % kStepWallCheck == 0 && Clock::now() > deadline) break;
+    }
+    const double busy = std::chrono::duration<double>(Clock::now() - start).count();
+    period_.busy_wall += busy;
+    total_.busy_wall += busy;
+    LogSummaryIfDue();  // ~duration reached in this chunk
+    if (failed || done == req.steps) break;
+    lock.unlock();
+    while (waiting_services_.load() > 0) std::this_thread::yield();
+    lock.lock();
+    if (!ros::ok()) {
+      interrupted = "the node is shutting down";
+    } else if (!paused_) {
+      interrupted = "~unpause_physics was called";
+    }
+    if (interrupted != nullptr) break;
+  }
   PublishClock(/*flush=*/true);
   res.sim_time = sim_->time();
   res.stamp = StampOf(sim_->time());
-  if (sim_->diverged()) {
+  if (failed) {
     res.success = false;
-    res.status_message = "the state became non-finite: stopped at the last finite state, call "
-                         "~reset to go on";
+    res.status_message =
+        "stopped after " + std::to_string(done) + " of " + std::to_string(req.steps) +
+        " steps: " +
+        (fault_.empty() ? std::string("a step failed") : fault_);
+    return true;
+  }
+  if (interrupted != nullptr) {
+    res.success = false;
+    res.status_message = "stopped after " + std::to_string(done) + " of " +
+                         std::to_string(req.steps) + " steps: " + interrupted;
     return true;
   }
   res.success = true;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,8 @@ constexpr double kMaxChunkWall = 0.01;
 constexpr double kMaxBacklogWall = 0.1;
 // How often (in steps) a long run checks the wall clock.
 constexpr std::int64_t kWallCheckSteps = 16;
+// A step with more solver iterations than this checks the wall clock at once.
+constexpr int kLongStepIterations = 100;
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
@@ -109,7 +112,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   UpdatePeriods();
   RestartChannels();
   PublishClock(/*flush=*/true);
-  anchor_wall_ = unpaused_at_ = previous_diagnostics_wall_ = Clock::now();
+  anchor_wall_ = unpaused_at_ = Clock::now();
 
   ROS_INFO(
       "nonsmooth_sim: %zu bodies, %zu collisions, friction set %s, time step %g s, "
@@ -121,6 +124,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   if (pace_ != parameters_.real_time_factor) {
     ROS_INFO("nonsmooth_sim: real-time factor limited to %g by ~max_wall_publish_rate %g Hz", pace_,
              parameters_.max_wall_publish_rate);
+  }
+  bool use_sim_time = false;
+  if (!nh_.getParam("/use_sim_time", use_sim_time) || !use_sim_time) {
+    ROS_WARN(
+        "nonsmooth_sim: /use_sim_time is not true: every stamp this node publishes (TF, contacts, "
+        "markers) is simulated time from /clock, while the other nodes run on wall time, so tf "
+        "lookups and rviz will not match them; set /use_sim_time true before they start (the "
+        "launch files' default, use_sim_time:=true)");
   }
   integrator_ = std::thread(&SimulationNode::Run, this);
 }
@@ -187,27 +198,41 @@ void SimulationNode::Run() {
 std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point deadline) {
   const Clock::time_point start = Clock::now();
   std::int64_t done = 0;
+  const double dt = sim_->options().time_step;
   while (done < budget && !paused_) {
     StepOnce();
+    running_sim_time_ += dt;
     ++steps_since_anchor_;
     ++done;
-    if (done % kWallCheckSteps == 0 && Clock::now() > deadline) break;
+    // the clock every kWallCheckSteps steps, or after every step that iterated long (up to
+    // SimulatorOptions' cap of iterations, a step can take milliseconds)
+    if ((done % kWallCheckSteps == 0 || last_step_.solver.iterations > kLongStepIterations) &&
+        Clock::now() > deadline) {
+      break;
+    }
   }
   const double busy = Seconds(Clock::now() - start);
   period_.busy_wall += busy;
   total_.busy_wall += busy;
+  LogSummaryIfDue();
   return done;
 }
 
 void SimulationNode::StepOnce() {
-  last_step_ = sim_->Step();
+  try {
+    last_step_ = sim_->Step();
+  } catch (const std::exception& e) {
+    // the core validates its inputs and throws on what it cannot step; never abort the node
+    Fault(std::string("a step failed: ") + e.what());
+    return;
+  }
   if (!last_step_.state_finite) {
-    ROS_ERROR_ONCE(
-        "nonsmooth_sim: the state became non-finite at t = %.6f s (dt*|omega| = %.3g, "
-        "~gyroscopic %s): paused at the last finite state; call ~reset to go on",
-        sim_->time() + sim_->options().time_step, last_step_.max_dt_omega,
-        std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
-    Pause("state not finite");
+    char reason[256];
+    std::snprintf(reason, sizeof reason,
+                  "the state became non-finite (dt*|omega| = %.3g, ~gyroscopic %s)",
+                  last_step_.max_dt_omega,
+                  std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
+    Fault(reason);
     return;
   }
   if (last_step_.explicit_gyroscopic_unsafe) {
@@ -227,17 +252,36 @@ void SimulationNode::StepOnce() {
   if (parameters_.duration > 0.0 && !duration_reached_ &&
       sim_->time() >= parameters_.duration - 0.5 * dt) {
     duration_reached_ = true;
+    summary_due_ = true;  // logged by the caller once this chunk's wall time is counted
     Pause("duration reached");
-    const double steps = static_cast<double>(total_.steps);
-    ROS_INFO(
-        "nonsmooth_sim: reached t = %.6f s after %lld steps: %.3f s wall running "
-        "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
-        "%lld unconverged steps",
-        sim_->time(), static_cast<long long>(total_.steps), run_wall_,
-        run_wall_ > 0.0 ? sim_->time() / run_wall_ : 0.0,
-        1e6 * (total_.busy_wall - total_.publish_wall) / steps, 1e6 * total_.publish_wall / steps,
-        static_cast<long long>(total_.unconverged));
   }
+}
+
+void SimulationNode::LogSummaryIfDue() {
+  if (!summary_due_) return;
+  summary_due_ = false;
+  const double steps = static_cast<double>(std::max<std::int64_t>(total_.steps, 1));
+  const double stepping = std::max(0.0, total_.busy_wall - total_.publish_wall);
+  ROS_INFO(
+      "nonsmooth_sim: reached t = %.6f s after %lld steps: %.4g s wall running "
+      "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
+      "%lld unconverged steps",
+      sim_->time(), static_cast<long long>(total_.steps), run_wall_,
+      run_wall_ > 0.0 ? running_sim_time_ / run_wall_ : 0.0, 1e6 * stepping / steps,
+      1e6 * total_.publish_wall / steps, static_cast<long long>(total_.unconverged));
+}
+
+double SimulationNode::RunningWall(Clock::time_point now) const {
+  return run_wall_ + (paused_ ? 0.0 : Seconds(now - unpaused_at_));
+}
+
+void SimulationNode::Fault(const std::string& what) {
+  fault_ = what + " at t = " + std::to_string(sim_->time()) +
+           " s: paused at the last finite state; call ~reset, ~reset_world or "
+           "~reset_simulation to go on";
+  ++faults_;
+  ROS_ERROR_STREAM("nonsmooth_sim: " << fault_);  // once per occurrence: each one pauses
+  Pause("fault");
 }
 
 void SimulationNode::Pause(const char* reason) {
@@ -362,6 +406,7 @@ void SimulationNode::PublishClock(bool flush) {
 }
 
 void SimulationNode::AfterReset() {
+  fault_.clear();
   RestartChannels();
   std::fill(wrench_closed_.begin(), wrench_closed_.end(), false);
   geometry_msgs::WrenchStamped zero;
@@ -380,9 +425,12 @@ void SimulationNode::AfterReset() {
 // diagnostics
 
 void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
-  const Clock::time_point now = Clock::now();
+  double running_wall = 0.0;
+  double running_sim_time = 0.0;
   {
     std::unique_lock<std::mutex> lock = LockForService();
+    running_wall = RunningWall(Clock::now());
+    running_sim_time = running_sim_time_;
     snapshot_.period = period_;
     period_ = RunStatistics();
     snapshot_.unconverged_total = total_.unconverged;
@@ -393,11 +441,17 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     snapshot_.solver = std::string(SolverTypeName(sim_->options().solver.type));
     snapshot_.time_step = sim_->options().time_step;
     snapshot_.pace = pace_;
+    snapshot_.fault = fault_;
+    snapshot_.faults = faults_;
   }
-  const double wall = Seconds(now - previous_diagnostics_wall_);
-  snapshot_.real_time_factor = wall > 0.0 ? (snapshot_.sim_time - previous_sim_time_) / wall : 0.0;
-  previous_sim_time_ = snapshot_.sim_time;
-  previous_diagnostics_wall_ = now;
+  // over the wall time the integrator ran in this period (not the paused time), and the sim time
+  // it advanced in it (not ~step calls)
+  const double wall = running_wall - previous_running_wall_;
+  snapshot_.running_wall = wall;
+  snapshot_.real_time_factor = wall > 0.0 ? (running_sim_time - previous_running_sim_time_) / wall
+                                          : 0.0;
+  previous_running_wall_ = running_wall;
+  previous_running_sim_time_ = running_sim_time;
   updater_.force_update();
 }
 
@@ -405,7 +459,9 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   const DiagnosticsSnapshot& s = snapshot_;
   const RunStatistics& p = s.period;
   const double steps = static_cast<double>(std::max<std::int64_t>(p.steps, 1));
-  if (p.unconverged > 0) {
+  if (!s.fault.empty()) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, s.fault);
+  } else if (p.unconverged > 0) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lld of %lld steps: contact solver not converged",
                     static_cast<long long>(p.unconverged), static_cast<long long>(p.steps));
@@ -414,7 +470,8 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   }
   status.add("sim time [s]", s.sim_time);
   status.add("paused", s.paused);
-  status.add("real-time factor", s.real_time_factor);
+  status.add("real-time factor", s.real_time_factor);  // over the running wall time
+  status.add("running wall time in period [s]", s.running_wall);
   status.add("requested real-time factor (0: as fast as possible)", parameters_.real_time_factor);
   status.add("real-time factor kept (0: as fast as possible)", s.pace);
   status.add("steps in period", p.steps);
@@ -430,6 +487,7 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("max dt*|omega| (explicit gyroscopic error ~ its square)", p.max_dt_omega);
   status.add("friction set", s.friction_sets);
   status.add("closed contacts", s.closed_contacts);
+  status.add("faults (failed steps) in total", s.faults);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -3,10 +3,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
@@ -29,6 +31,34 @@ constexpr Key kKeys[] = {
 };
 
 int Line(const YAML::Node& node) { return node.Mark().line + 1; }
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// The bound of key `name` on `value` (initial_state.h); throws std::invalid_argument "<reason>".
+void CheckKey(const std::string& name, const Eigen::Vector3d& value) {
+  if (name == "position") {
+    CheckInitialPosition(name, value);
+  } else if (name == "linear_velocity") {
+    CheckInitialLinearVelocity(name, value);
+  } else if (name == "angular_velocity") {
+    CheckInitialAngularVelocity(name, value);
+  }
+}
+
+// The reason of CheckKey without its leading "<name>: ".
+std::string BoundViolation(const std::string& name, const Eigen::Vector3d& value) {
+  try {
+    CheckKey(name, value);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    return what.substr(std::min(what.size(), name.size() + 2));
+  }
+  return "";
+}
 
 [[noreturn]] void Fail(const std::string& path, int line, const std::string& reason) {
   throw InitialStateError("initial state: " + path +
@@ -81,6 +111,10 @@ BodyInitialState ParseBody(const YAML::Node& node, const std::string& path, int 
                                             std::to_string(it->second) + ")");
     }
     const Eigen::VectorXd v = Numbers(entry.second, key_path, *key);
+    if (key->size == 3) {
+      const std::string violation = BoundViolation(name, v.head<3>());
+      if (!violation.empty()) Fail(key_path, Line(entry.second), violation);
+    }
     if (key == &kKeys[0]) {
       body.position = v.head<3>();
     } else if (key == &kKeys[1]) {
@@ -118,6 +152,32 @@ std::string ReadFile(const std::string& path) {
 }
 
 }  // namespace
+
+void CheckInitialPosition(const std::string& what, const Eigen::Vector3d& position) {
+  if (!(position.cwiseAbs().maxCoeff() <= kMaxInitialCoordinate) || !position.allFinite()) {
+    throw std::invalid_argument(what + ": (" + Format(position.x()) + ", " + Format(position.y()) +
+                                ", " + Format(position.z()) + ") m: every coordinate must be in [" +
+                                Format(-kMaxInitialCoordinate) + ", " +
+                                Format(kMaxInitialCoordinate) + "] m");
+  }
+}
+
+void CheckInitialLinearVelocity(const std::string& what, const Eigen::Vector3d& velocity) {
+  const double speed = velocity.stableNorm();  // norm() overflows for 1e300
+  if (!(speed <= kMaxInitialSpeed)) {
+    throw std::invalid_argument(what + ": |v| = " + Format(speed) + " m/s must be <= " +
+                                Format(kMaxInitialSpeed) + " m/s");
+  }
+}
+
+void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d& velocity) {
+  const double speed = velocity.stableNorm();  // norm() overflows for 1e300
+  if (!(speed <= kMaxInitialAngularSpeed)) {
+    throw std::invalid_argument(what + ": |w| = " + Format(speed) + " rad/s must be <= " +
+                                Format(kMaxInitialAngularSpeed) +
+                                " rad/s (finite kinetic energy, bounded dt*|w|)");
+  }
+}
 
 InitialStateSpec ParseInitialStateYaml(const std::string& yaml_text) {
   YAML::Node root;
@@ -182,6 +242,17 @@ std::vector<BodyState> ApplyInitialState(const Scene& scene,
            "not a free body of the scene (static links and links fixed to a body have no state of "
            "their own); bodies: " + bodies);
     }
+    // a spec built in code (the node's parameters) gets the bounds the YAML parser checks
+    const std::string path = "bodies." + link;
+    const std::pair<const char*, const std::optional<Eigen::Vector3d>*> parts[] = {
+        {"position", &start.position},
+        {"linear_velocity", &start.linear_velocity},
+        {"angular_velocity", &start.angular_velocity}};
+    for (const auto& [name, part] : parts) {
+      if (!*part) continue;
+      const std::string violation = BoundViolation(name, **part);
+      if (!violation.empty()) Fail(path + "." + name, start.line, violation);
+    }
     const Eigen::Vector3d& c = scene.bodies[index].com_in_link;
     BodyState& s = state[index];
     // the link frame's pose: position = r_S − R c
@@ -191,6 +262,10 @@ std::vector<BodyState> ApplyInitialState(const Scene& scene,
     if (start.position || start.orientation) {
       s.orientation = rotation;
       s.position = link_position + rotation * c;  // r_S = position + R c
+      const std::string violation = BoundViolation("position", s.position);
+      if (!violation.empty()) {
+        Fail(path + ".position", start.line, "the centre of mass " + violation);
+      }
     }
     if (start.linear_velocity) s.linear_velocity = *start.linear_velocity;
     if (start.angular_velocity) s.angular_velocity = *start.angular_velocity;

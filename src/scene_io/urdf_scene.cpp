@@ -5,6 +5,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -101,9 +102,72 @@ struct MassProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
 
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::string FormatVector(const Eigen::Vector3d& v) {
+  return "(" + Format(v.x()) + ", " + Format(v.y()) + ", " + Format(v.z()) + ")";
+}
+
+// Throws unless every coordinate of `point` is within kMaxCoordinate (urdf_scene.h, "Bounds").
+void CheckCoordinates(const std::string& what, const Eigen::Vector3d& point) {
+  if (point.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw UrdfError("urdf: " + what + " " + FormatVector(point) +
+                    " m: coordinates must be in [" + Format(-kMaxCoordinate) + ", " +
+                    Format(kMaxCoordinate) + "] m");
+  }
+}
+
+// The rigid-body checks of "Bounds" (urdf_scene.h) on a mass m and its inertia Θ about the centre
+// of mass: m in [kMinMass, kMaxMass]; the principal moments I₁ ≤ I₂ ≤ I₃ (eigenvalues of Θ) > 0
+// with I₃ ≤ (I₁ + I₂)(1 + kInertiaTriangleTolerance); √(Iᵢ/m) in [kMinGyrationRadius,
+// kMaxGyrationRadius]; and with extent > 0, √(I₃/m) ≤ kGyrationSizeFactor·extent. `what` names
+// the element ("link "b" > inertial > inertia") or the body.
+void CheckRigidBody(const std::string& what, double mass, const Eigen::Matrix3d& inertia,
+                    double extent) {
+  const auto fail = [&](const std::string& reason) {
+    throw UrdfError("urdf: " + what + ": " + reason);
+  };
+  if (!(mass >= kMinMass && mass <= kMaxMass)) {
+    fail("mass " + Format(mass) + " kg must be in [" + Format(kMinMass) + ", " +
+         Format(kMaxMass) + "] kg");
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(
+      0.5 * (inertia + inertia.transpose()), Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d moments = eigen.eigenvalues();  // ascending
+  const std::string listed = "principal moments " + Format(moments[0]) + ", " +
+                             Format(moments[1]) + ", " + Format(moments[2]) + " kg m^2";
+  if (!(moments[0] > 0.0)) fail(listed + ": not positive definite");
+  if (moments[2] > (moments[0] + moments[1]) * (1.0 + kInertiaTriangleTolerance)) {
+    fail(listed + ": " + Format(moments[2]) + " > " + Format(moments[0]) + " + " +
+         Format(moments[1]) +
+         " violates the triangle inequality (each principal moment of a rigid body is at most "
+         "the sum of the other two; relative tolerance " +
+         Format(kInertiaTriangleTolerance) + ")");
+  }
+  const double smallest = std::sqrt(moments[0] / mass);
+  const double largest = std::sqrt(moments[2] / mass);
+  const std::string range = "[" + Format(kMinGyrationRadius) + ", " +
+                            Format(kMaxGyrationRadius) + "] m";
+  if (!(smallest >= kMinGyrationRadius && largest <= kMaxGyrationRadius)) {
+    fail(listed + " for mass " + Format(mass) + " kg: radii of gyration sqrt(I/m) from " +
+         Format(smallest) + " to " + Format(largest) + " m must be in " + range);
+  }
+  if (extent > 0.0 && largest > kGyrationSizeFactor * extent) {
+    fail(listed + " for mass " + Format(mass) + " kg: the largest radius of gyration sqrt(I/m) = " +
+         Format(largest) + " m must be at most " + Format(kGyrationSizeFactor) +
+         " x the body's extent " + Format(extent) +
+         " m (the farthest point of its collisions from the centre of mass)");
+  }
+}
+
 // Θ of one <inertial> in the group link's axes: the inertia is given about the link's centre of
 // mass in the axes of <inertial><origin> (rotation R_o); the member link is turned by R_m in the
-// group link's frame, so Θ = (R_m R_o) Θ (R_m R_o)ᵀ. Throws unless Θ is positive definite.
+// group link's frame, so Θ = (R_m R_o) Θ (R_m R_o)ᵀ. Throws unless Θ is positive definite and a
+// rigid body's (CheckRigidBody).
 void AddInertial(const Member& member, std::vector<std::pair<double, Eigen::Vector3d>>* masses,
                  std::vector<Eigen::Matrix3d>* inertias) {
   const urdf::Link& link = *member.link;
@@ -120,6 +184,7 @@ void AddInertial(const Member& member, std::vector<std::pair<double, Eigen::Vect
                     std::to_string(inertial.ixy) + " ixz=" + std::to_string(inertial.ixz) +
                     " iyz=" + std::to_string(inertial.iyz) + ")");
   }
+  CheckRigidBody(LinkLabel(link.name) + " > inertial > inertia", inertial.mass, theta, 0.0);
   const Eigen::Matrix3d rotation =
       member.pose.linear() * ToEigen(inertial.origin.rotation).toRotationMatrix();
   masses->emplace_back(inertial.mass, member.pose * ToEigen(inertial.origin.position));
@@ -378,9 +443,22 @@ class Builder {
       AddColliders(*member.link, link_in_body * member.pose, index);
       if (member.link != &link) merged.push_back(member.link->name);
     }
+    // the body as a whole (links merged): its mass, its inertia against its size, its start
+    double extent = 0.0;
+    for (const Collider& c : result_.scene.colliders) {
+      if (c.body != index) continue;
+      extent = std::max(extent, c.pose.translation().norm() + BoundingRadius(c.shape));
+    }
+    CheckRigidBody(LinkLabel(link.name) +
+                       (merged.empty() ? std::string(" (the body)")
+                                       : " (the body, with the links fixed to it)"),
+                   mass.mass, mass.inertia, extent);
     BodyState state;
     state.orientation = Eigen::Quaterniond(group.world_pose.linear());
     state.position = group.world_pose * mass.com;
+    CheckCoordinates(LinkLabel(link.name) +
+                         ": its start (the joint origins from the root) puts the centre of mass at",
+                     state.position);
     result_.scene.bodies.push_back(body);
     result_.scene.initial_state.push_back(state);
     result_.merged_links.push_back(std::move(merged));
@@ -453,7 +531,34 @@ class Builder {
       collider.body = body;
       collider.pose = frame * ToEigen(collision->origin);
       collider.law = LawFromSurface(surface, options_);
+      CheckCoordinates(label + (body == kWorld ? ": its world position (the joint origins from "
+                                                 "the root)"
+                                               : ": its position relative to the body's centre of "
+                                                 "mass"),
+                       collider.pose.translation());
+      CheckContactRadius(surface, collider, label);
       result_.scene.colliders.push_back(collider);
+    }
+  }
+
+  // R of a collider's law (the option or the link's patch radius) lies on the shape: at most its
+  // bounding radius on a free body; R̄ = 3πR/16·μ_τ/μ at most kMaxLength (μ_τ/μ can be huge).
+  void CheckContactRadius(const LinkSurface& surface, const Collider& collider,
+                          const std::string& label) const {
+    const double radius = options_.contact_radius.value_or(surface.patch_radius);
+    const char* source = options_.contact_radius ? "the option contact_radius"
+                                                 : "<torsional><patch_radius> of the link";
+    if (collider.body != kWorld && radius > BoundingRadius(collider.shape)) {
+      throw UrdfError("urdf: " + label + ": contact patch radius R = " + Format(radius) +
+                      " m (" + source + ") must be at most the size of the shape, its bounding "
+                      "radius " + Format(BoundingRadius(collider.shape)) +
+                      " m (a contact patch lies on the shape)");
+    }
+    if (collider.law.rbar > kMaxLength) {
+      throw UrdfError("urdf: " + label + ": drilling radius Rbar = 3 pi R/16 * mu_tau/mu = " +
+                      Format(collider.law.rbar) + " m (R = " + Format(radius) + " m, mu_tau = " +
+                      Format(surface.torsional_coefficient) + ", mu = " + Format(surface.mu) +
+                      ") must be at most " + Format(kMaxLength) + " m");
     }
   }
 
@@ -516,15 +621,20 @@ class Builder {
 }  // namespace
 
 void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
-  if (!(std::isfinite(options.gravity) && options.gravity >= 0.0)) {
-    throw std::invalid_argument("gravity must be finite and >= 0 [m/s^2]");
+  // (the comparisons are false for NaN)
+  if (!(options.gravity >= 0.0 && options.gravity <= kMaxGravity)) {
+    throw std::invalid_argument("gravity = " + Format(options.gravity) + ": must be in [0, " +
+                                Format(kMaxGravity) + "] [m/s^2]");
   }
-  if (options.mu && !(std::isfinite(*options.mu) && *options.mu >= 0.0)) {
-    throw std::invalid_argument("mu must be finite and >= 0");
+  if (options.mu && !(*options.mu >= 0.0 && *options.mu <= kMaxFriction)) {
+    throw std::invalid_argument("mu = " + Format(*options.mu) + ": must be in [0, " +
+                                Format(kMaxFriction) + "]");
   }
   if (options.contact_radius &&
-      !(std::isfinite(*options.contact_radius) && *options.contact_radius >= 0.0)) {
-    throw std::invalid_argument("contact_radius must be finite and >= 0 [m]");
+      !(*options.contact_radius >= 0.0 && *options.contact_radius <= kMaxLength)) {
+    throw std::invalid_argument("contact_radius = " + Format(*options.contact_radius) +
+                                ": must be in [0, " + Format(kMaxLength) +
+                                "] [m] (and at most the size of every shape of a free body)");
   }
   if (FrictionSetName(options.friction_set) == "unknown") {
     throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());

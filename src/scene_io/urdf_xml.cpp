@@ -15,8 +15,6 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-constexpr double kInf = HUGE_VAL;
-
 // "link "tippe_top" > inertial > mass" (robot excluded), for error lines.
 std::string Describe(const XMLElement* element) {
   std::string path;
@@ -79,6 +77,29 @@ bool NumbersAttribute(const XMLElement* element, const char* name, std::size_t c
   return true;
 }
 
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// "[low, high] unit" of an error line.
+std::string Range(double low, double high, const char* unit) {
+  return "[" + Format(low) + ", " + Format(high) + "]" + unit;
+}
+
+// Every one of `values` (of attribute `name`) in [low, high] (urdf_scene.h, "Bounds").
+void RequireInRange(const XMLElement* element, const char* name,
+                    const std::vector<double>& values, double low, double high, const char* unit,
+                    const char* why = "") {
+  for (double v : values) {
+    if (v < low || v > high) {
+      Fail(element, std::string(name) + "=\"" + element->Attribute(name) + "\": " + Format(v) +
+                        " is out of range, expected " + Range(low, high, unit) + why);
+    }
+  }
+}
+
 // `count` numbers of attribute `name`, each > 0 (or ≥ 0 with allow_zero); the attribute is
 // required.
 std::vector<double> RequirePositive(const XMLElement* element, const char* name,
@@ -97,15 +118,25 @@ std::vector<double> RequirePositive(const XMLElement* element, const char* name,
 }
 
 // The numeric attributes urdfdom reads, by element name: checked wherever they occur in links and
-// joints (visuals included: NaN anywhere is an error).
-void CheckNumbers(const XMLElement* element) {
+// joints (visuals included: NaN anywhere is an error), with the bounds of urdf_scene.h: every
+// origin within kMaxCoordinate, masses in [kMinMass, kMaxMass], and inside a <collision>
+// (`in_collision`: what is simulated) sizes in [kMinLength, kMaxLength].
+void CheckNumbers(const XMLElement* element, bool in_collision = false) {
   const std::string tag = element->Name();
+  in_collision = in_collision || tag == "collision";
   std::vector<double> values;
+  const auto size = [&](const char* name, std::size_t count) {
+    const std::vector<double> sizes = RequirePositive(element, name, count);
+    if (in_collision) RequireInRange(element, name, sizes, kMinLength, kMaxLength, " m");
+  };
   if (tag == "origin") {
-    NumbersAttribute(element, "xyz", 3, &values);
+    if (NumbersAttribute(element, "xyz", 3, &values)) {
+      RequireInRange(element, "xyz", values, -kMaxCoordinate, kMaxCoordinate, " m");
+    }
     NumbersAttribute(element, "rpy", 3, &values);
   } else if (tag == "mass") {
-    RequirePositive(element, "value", 1);
+    RequireInRange(element, "value", RequirePositive(element, "value", 1), kMinMass, kMaxMass,
+                   " kg");
   } else if (tag == "inertia") {
     for (const char* name : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
       if (!NumbersAttribute(element, name, 1, &values)) {
@@ -113,12 +144,12 @@ void CheckNumbers(const XMLElement* element) {
       }
     }
   } else if (tag == "sphere") {
-    RequirePositive(element, "radius", 1);
+    size("radius", 1);
   } else if (tag == "cylinder") {
-    RequirePositive(element, "radius", 1);
-    RequirePositive(element, "length", 1);
+    size("radius", 1);
+    size("length", 1);
   } else if (tag == "box") {
-    RequirePositive(element, "size", 3);
+    size("size", 3);
   } else if (tag == "mesh" || tag == "axis") {
     NumbersAttribute(element, tag == "mesh" ? "scale" : "xyz", 3, &values);
   } else if (tag == "color") {
@@ -136,7 +167,7 @@ void CheckNumbers(const XMLElement* element) {
   }
   for (const XMLElement* child = element->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {
-    CheckNumbers(child);
+    CheckNumbers(child, in_collision);
   }
 }
 
@@ -164,29 +195,34 @@ const XMLElement* Child(const XMLElement* element, std::initializer_list<const c
 
 // <gazebo reference="link">: surface friction of the link's collisions.
 void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std::string>* warnings) {
+  const std::string friction_range = Range(0.0, kMaxFriction, "");
+  const std::string radius_range = Range(0.0, kMaxLength, " m");
+  const auto friction = [&](const XMLElement* e) {
+    return TextNumber(e, 0.0, kMaxFriction, friction_range.c_str());
+  };
   // legacy shortcut <mu1>, still common in URDFs written for Gazebo classic
   if (const XMLElement* mu1 = gazebo->FirstChildElement("mu1")) {
-    surface->mu = TextNumber(mu1, 0.0, kInf, ">= 0");
+    surface->mu = friction(mu1);
   }
   for (const XMLElement* collision = gazebo->FirstChildElement("collision"); collision != nullptr;
        collision = collision->NextSiblingElement("collision")) {
-    const XMLElement* friction = Child(collision, {"surface", "friction"});
-    if (friction == nullptr) continue;
-    if (const XMLElement* mu = Child(friction, {"ode", "mu"})) {
-      surface->mu = TextNumber(mu, 0.0, kInf, ">= 0");
+    const XMLElement* friction_element = Child(collision, {"surface", "friction"});
+    if (friction_element == nullptr) continue;
+    if (const XMLElement* mu = Child(friction_element, {"ode", "mu"})) {
+      surface->mu = friction(mu);
     }
-    if (const XMLElement* mu2 = Child(friction, {"ode", "mu2"})) {
-      if (TextNumber(mu2, 0.0, kInf, ">= 0") != surface->mu) {
+    if (const XMLElement* mu2 = Child(friction_element, {"ode", "mu2"})) {
+      if (friction(mu2) != surface->mu) {
         warnings->push_back("urdf: " + Describe(mu2) +
                             ": anisotropic friction is not supported, using mu");
       }
     }
-    if (const XMLElement* torsional = friction->FirstChildElement("torsional")) {
+    if (const XMLElement* torsional = friction_element->FirstChildElement("torsional")) {
       if (const XMLElement* c = torsional->FirstChildElement("coefficient")) {
-        surface->torsional_coefficient = TextNumber(c, 0.0, kInf, ">= 0");
+        surface->torsional_coefficient = friction(c);
       }
       if (const XMLElement* r = torsional->FirstChildElement("patch_radius")) {
-        surface->patch_radius = TextNumber(r, 0.0, kInf, ">= 0");
+        surface->patch_radius = TextNumber(r, 0.0, kMaxLength, radius_range.c_str());
       }
       if (const XMLElement* use = torsional->FirstChildElement("use_patch_radius")) {
         const char* text = use->GetText();
@@ -242,12 +278,15 @@ ShapeOverride ReadShapeOverride(const XMLElement* collision) {
   if (tag == "ellipsoid") {
     RequireOnlyAttributes(element, {"semi_axes"});
     const std::vector<double> axes = RequirePositive(element, "semi_axes", 3);
+    RequireInRange(element, "semi_axes", axes, kMinLength, kMaxLength, " m");
     result.shape = Shape::Ellipsoid(Eigen::Vector3d(axes[0], axes[1], axes[2]));
   } else if (tag == "capsule") {
     RequireOnlyAttributes(element, {"radius", "length"});
     const double radius = RequirePositive(element, "radius", 1)[0];
+    RequireInRange(element, "radius", {radius}, kMinLength, kMaxLength, " m");
     // length of the segment between the centres of the end caps (0: a sphere)
     const double length = RequirePositive(element, "length", 1, /*allow_zero=*/true)[0];
+    RequireInRange(element, "length", {length}, 0.0, kMaxLength, " m");
     result.shape = Shape::Capsule(radius, 0.5 * length);
   } else if (tag == "plane") {
     RequireOnlyAttributes(element, {});

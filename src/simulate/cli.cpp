@@ -2,6 +2,7 @@
 // option, the value and what is allowed, before anything runs or is written.
 #include "cli.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,9 @@
 #include <map>
 #include <sstream>
 
+#include "nonsmooth_sim/scene_io/initial_state.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
+
 namespace nonsmooth_sim::simulate {
 namespace {
 
@@ -17,11 +21,19 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinTimeStep = 1e-7;   // [s], as ValidateSimulatorOptions
 constexpr double kMaxTimeStep = 1e-2;   // [s]
 constexpr double kMaxDuration = 1e5;    // [s], keeps the step count far inside a long
-constexpr long kMaxIterationsLimit = std::numeric_limits<int>::max();
+// The core's bounds (ValidateSimulatorOptions, the loader's and the initial state's, see
+// docs/settings.md and docs/urdf.md), checked here too so that the message names the option.
+constexpr long kMaxIterationsLimit = kMaxSimulatorIterations;
 
 struct Error {
   std::string message;
 };
+
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 Error BadValue(const std::string& option, const std::string& value, const std::string& allowed) {
   return {"invalid value '" + value + "' for " + option + ": expected " + allowed};
@@ -104,25 +116,29 @@ const std::map<std::string, Setter>& ValueOptions() {
        }},
       {"--max-iterations",
        [](RunConfig& c, const std::string& o, const std::string& v) {
-         c.options.solver.max_iterations = static_cast<int>(
-             ParseInteger(o, v, 1, kMaxIterationsLimit, "an integer >= 1"));
+         c.options.solver.max_iterations = static_cast<int>(ParseInteger(
+             o, v, 1, kMaxIterationsLimit,
+             "an integer in [1, " + std::to_string(kMaxIterationsLimit) + "]"));
        }},
       {"--relaxation",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.options.solver.relaxation =
-             ParseNumber(o, v, 0.0, 2.0, true, true, "a relaxation alpha in (0, 2)");
+             ParseNumber(o, v, kMinRelaxation, 2.0, false, true,
+                         "a relaxation alpha in [" + Format(kMinRelaxation) + ", 2)");
        }},
       {"--mu",
        [](RunConfig& c, const std::string& o, const std::string& v) {
-         c.parameters.mu = ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false,
-                                       false, "a finite friction coefficient >= 0");
+         c.parameters.mu = ParseNumber(o, v, 0.0, scene_io::kMaxFriction, false, false,
+                                       "a friction coefficient in [0, " +
+                                           Format(scene_io::kMaxFriction) + "]");
          c.mu_given = true;
        }},
       {"--contact-radius",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.parameters.contact_radius =
-             ParseNumber(o, v, 0.0, std::numeric_limits<double>::max(), false, false,
-                         "a finite contact radius R >= 0 m");
+             ParseNumber(o, v, 0.0, scene_io::kMaxLength, false, false,
+                         "a contact radius R in [0, " + Format(scene_io::kMaxLength) +
+                             "] m, at most the size of every shape it applies to");
          c.contact_radius_given = true;
        }},
       {"--inclination",
@@ -132,9 +148,11 @@ const std::map<std::string, Setter>& ValueOptions() {
        }},
       {"--spin",
        [](RunConfig& c, const std::string& o, const std::string& v) {
-         c.initial.spin = ParseNumber(o, v, -std::numeric_limits<double>::max(),
-                                      std::numeric_limits<double>::max(), false, false,
-                                      "a finite spin in rad/s");
+         c.initial.spin = ParseNumber(o, v, -scene_io::kMaxInitialAngularSpeed,
+                                      scene_io::kMaxInitialAngularSpeed, false, false,
+                                      "a spin in [-" + Format(scene_io::kMaxInitialAngularSpeed) +
+                                          ", " + Format(scene_io::kMaxInitialAngularSpeed) +
+                                          "] rad/s");
        }},
       {"--urdf",
        [](RunConfig& c, const std::string& o, const std::string& v) {
@@ -190,10 +208,12 @@ std::string UsageText() {
        "  --tolerance-abs ABS   solver absolute tolerance on the change [N s] (default "
     << SolverOptions{}.tolerance_abs
     << ")\n"
-       "  --max-iterations N    solver iteration cap per step (default "
+       "  --max-iterations N    solver iteration cap per step, in [1, "
+    << kMaxSimulatorIterations << "] (default "
     << SolverOptions{}.max_iterations
     << ")\n"
-       "  --relaxation ALPHA    alpha of (43), in (0, 2) (default 1)\n"
+       "  --relaxation ALPHA    alpha of (43), in ["
+    << kMinRelaxation << ", 2) (default 1)\n"
        "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
        "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
        "  --mu MU               friction coefficient of every contact (default: 0.3 for the\n"
@@ -277,6 +297,15 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
           }
         }
       }
+    }
+    // the loader checks a --urdf scene's shapes; the built-in Tippe-Top's are its two spheres
+    const double smallest_sphere =
+        std::min(config.parameters.big_radius, config.parameters.peg_radius);
+    if (config.urdf_path.empty() && config.contact_radius_given &&
+        config.parameters.contact_radius > smallest_sphere) {
+      throw BadValue("--contact-radius", Format(config.parameters.contact_radius),
+                     "for the built-in Tippe-Top a contact radius R of at most its peg radius " +
+                         Format(smallest_sphere) + " m (a contact patch lies on the sphere)");
     }
     if (std::llround(config.duration / config.options.time_step) < 1) {
       throw Error{"--duration " + std::to_string(config.duration) +

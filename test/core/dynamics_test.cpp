@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -16,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "allocation_counter.h"  // Step.DoesNotAllocate...: the heap allocation count
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/contact/contact_jacobian.h"
@@ -23,46 +22,6 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "scene_builders.h"
-
-// Counts every heap allocation of this test binary (for StepDoesNotAllocate): glibc lets a
-// program replace malloc and friends ("Replacing malloc" in its manual); these forward to
-// glibc's own implementation. Eigen allocates with malloc directly, operator new calls malloc.
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t count, std::size_t size);
-void* __libc_realloc(void* pointer, std::size_t size);
-void* __libc_memalign(std::size_t alignment, std::size_t size);
-void __libc_free(void* pointer);
-void* malloc(std::size_t size) {
-  ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) {
-  ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* pointer, std::size_t size) {
-  ++g_allocations;
-  return __libc_realloc(pointer, size);
-}
-void* memalign(std::size_t alignment, std::size_t size) {
-  ++g_allocations;
-  return __libc_memalign(alignment, size);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) {
-  ++g_allocations;
-  return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** pointer, std::size_t alignment, std::size_t size) {
-  ++g_allocations;
-  *pointer = __libc_memalign(alignment, size);
-  return *pointer != nullptr ? 0 : ENOMEM;
-}
-void free(void* pointer) { __libc_free(pointer); }
-}
 
 namespace nonsmooth_sim {
 namespace {
@@ -904,13 +863,13 @@ TEST(Step, DoesNotAllocateOnceItsProblemSizesHaveBeenSeen) {
   }
   ASSERT_TRUE(warm_sizes[0] && warm_sizes[1] && warm_sizes[2]);
   ASSERT_TRUE(warm_pairs[0] && warm_pairs[1]);
-  const long before = g_allocations.load();
+  const long before = test::HeapAllocations();
   bool sizes[3] = {false, false, false};
   for (int k = 0; k < 60000; ++k) {
     sim.Step(&stats);
     sizes[stats.closed_contacts] = true;
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(test::HeapAllocations() - before, 0);
   EXPECT_TRUE(sizes[1]);
   EXPECT_TRUE(sizes[2]);
 }

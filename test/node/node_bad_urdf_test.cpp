@@ -133,6 +133,15 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      {"~tf_rate", "expected a number"}, "tf_rate");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_5", "_urdf_file:=" + Fixture("absent.urdf")}),
                      {"~urdf_file", "cannot read"}, "urdf_file");
+  // finite but beyond the bounds of the core's validation (issue 11): the node ran 2^31
+  // iterations per step, or started with an infinite kinetic energy
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_7", urdf, "_max_iterations:=2147483647"}),
+                     {"max_iterations", "<= 100000 in a simulation", "2147483647"},
+                     "max_iterations");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_8", urdf, "_relaxation:=4.9e-324"}),
+                     {"relaxation", "[0.001, 2)"}, "relaxation");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_9", urdf, "_initial/spin:=1.0e+300"}),
+                     {"spin", "<= 10000 rad/s"}, "initial/spin");
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");

@@ -9,7 +9,13 @@
 #include <std_srvs/Empty.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <chrono>
+#include <future>
+#include <initializer_list>
 #include <limits>
+#include <memory>
+#include <optional>
+#include <thread>
 
 #include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
@@ -342,6 +348,79 @@ TEST_F(NodeServices, ResetWorldAndResetSimulationKeepTheTime) {
       },
       20.0));
   EXPECT_GT(Step(10).response.sim_time, simulation.sim_time);
+}
+
+// ~step with `steps` called from another thread; the answer if it comes within `timeout` wall
+// seconds (a node busy for longer leaves the call running).
+std::optional<StepSimulation::Response> StepWithin(std::uint32_t steps, double timeout) {
+  const auto answer = std::make_shared<std::promise<StepSimulation::Response>>();
+  std::future<StepSimulation::Response> future = answer->get_future();
+  std::thread([answer, steps] {
+    StepSimulation srv;
+    srv.request.steps = steps;
+    ros::service::call(kNode + "step", srv);
+    answer->set_value(srv.response);
+  }).detach();
+  if (future.wait_for(std::chrono::duration<double>(timeout)) != std::future_status::ready) {
+    return std::nullopt;
+  }
+  return future.get();
+}
+
+TEST_F(NodeServices, HostileRequestsAreRejectedAndChangeNothing) {
+  // issue 11: finite values that multiplied the work without bound or made the state
+  // non-finite were accepted; one ~step then iterated 2^31 times holding the node's lock
+  Step(200);
+  const SimulationState state = State();
+  const GetSolverProperties::Response solver = Solver();
+  auto rejected = [](bool success, const std::string& message,
+                     std::initializer_list<std::string> expected) {
+    EXPECT_FALSE(success) << message;
+    for (const std::string& part : expected) {
+      EXPECT_NE(message.find(part), std::string::npos) << "\"" << part << "\" not in: " << message;
+    }
+  };
+
+  SetSolverProperties solver_request;
+  solver_request.request.max_iterations = {2147483647};
+  SetSolverProperties::Response s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, {"max_iterations", "<= 100000 in a simulation"});
+  solver_request = SetSolverProperties();
+  solver_request.request.relaxation = {4.9e-324};
+  s = SetSolver(solver_request);
+  rejected(s.success, s.status_message, {"relaxation", "[0.001, 2)"});
+  EXPECT_EQ(Solver(), solver);
+
+  ResetState reset;
+  reset.request.spin = {1e300};
+  ResetState::Response r = Reset(reset);
+  rejected(r.success, r.status_message, {"spin", "<= 10000 rad/s"});
+  reset = ResetState();
+  reset.request.angular_velocity = {0.0, 2e4, 0.0};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, {"angular_velocity", "<= 10000 rad/s"});
+  reset = ResetState();
+  reset.request.linear_velocity = {1e300, 0.0, 0.0};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, {"linear_velocity", "<= 1000 m/s"});
+  reset = ResetState();
+  reset.request.position = {0.0, 0.0, 1e300};
+  r = Reset(reset);
+  rejected(r.success, r.status_message, {"position", "[-1000, 1000] m"});
+
+  // 4294967295 steps: rejected at once, not run for hours
+  const std::optional<StepSimulation::Response> step = StepWithin(4294967295u, 10.0);
+  ASSERT_TRUE(step.has_value()) << "~step 4294967295 did not answer within 10 s";
+  rejected(step->success, step->status_message, {"steps", "<= 100000"});
+  EXPECT_EQ(step->sim_time, state.sim_time);
+
+  const SimulationState after = State();
+  EXPECT_EQ(after.sim_time, state.sim_time);
+  ExpectSameBodies(after, state);
+  EXPECT_EQ(Solver(), solver);
+  // and the largest accepted step count runs (10 s of simulated time)
+  const StepSimulation largest = Step(100000);
+  EXPECT_NEAR(largest.response.sim_time - state.sim_time, 100000 * solver.time_step, 1e-9);
 }
 
 }  // namespace

@@ -235,6 +235,50 @@ TEST(InitialStateYaml, WrongLengthsAndNumbersAreErrorsNamingTheKey) {
                  {"bodies.b.orientation (line 3)", "zero quaternion"});
 }
 
+TEST(InitialStateYaml, ValuesBeyondTheBoundsAreErrorsNamingTheKeyAndTheBound) {
+  // finite is not enough: a spin of 1e300 rad/s has an infinite kinetic energy (issue 11)
+  const Scene scene = TwoBodies();
+  ExpectContains(LoadError(scene, "bodies:\n  d:\n    angular_velocity: [0, 0, 1e300]\n"),
+                 {"bodies.d.angular_velocity (line 3)", "|w| = 1e+300 rad/s", "<= 10000 rad/s"});
+  ExpectContains(LoadError(scene, "bodies: {d: {angular_velocity: [6000, 0, -9000]}}"),
+                 {"bodies.d.angular_velocity", "<= 10000 rad/s"});  // |w| = 10817
+  ExpectContains(LoadError(scene, "bodies: {d: {linear_velocity: [0, 1e4, 0]}}"),
+                 {"bodies.d.linear_velocity", "|v| = 10000 m/s", "<= 1000 m/s"});
+  ExpectContains(LoadError(scene, "bodies: {d: {position: [0, 0, 1e300]}}"),
+                 {"bodies.d.position", "every coordinate must be in [-1000, 1000] m"});
+  ExpectContains(LoadError(scene, "bodies: {d: {position: [-1000.5, 0, 0]}}"),
+                 {"bodies.d.position", "[-1000, 1000] m"});
+  // the link origin inside, b's centre of mass 0.03 m above it (c = kCom, not turned) outside
+  ExpectContains(
+      LoadError(scene, "bodies: {b: {position: [0, 0, 1000], orientation: [0, 0, 0, 1]}}"),
+      {"bodies.b.position", "the centre of mass", "[-1000, 1000] m"});
+
+  // at the bounds: accepted, and the kinetic energy is finite
+  const std::vector<BodyState> state = InitialStateFromYaml(
+      scene,
+      "bodies: {d: {position: [1000, -1000, 1000], linear_velocity: [0, 0, -1000], "
+      "angular_velocity: [0, 10000, 0]}}");
+  EXPECT_EQ(state[1].position, Eigen::Vector3d(1000.0, -1000.0, 1000.0));
+  EXPECT_EQ(state[1].angular_velocity, Eigen::Vector3d(0.0, 10000.0, 0.0));
+  EXPECT_TRUE(std::isfinite(MechanicalEnergy(scene, state)));
+
+  // a spec built in code (the node's ~initial_state parameters) is held to the same bounds
+  InitialStateSpec spec;
+  spec["d"].angular_velocity = Eigen::Vector3d(0.0, 0.0, 1e300);
+  try {
+    ApplyInitialState(scene, scene.initial_state, spec);
+    ADD_FAILURE() << "a spin of 1e300 rad/s was applied";
+  } catch (const InitialStateError& e) {
+    ExpectContains(e.what(), {"bodies.d.angular_velocity", "<= 10000 rad/s"});
+  }
+  spec["d"] = BodyInitialState();
+  spec["d"].position = Eigen::Vector3d(0.0, 1e300, 0.0);
+  EXPECT_THROW(ApplyInitialState(scene, scene.initial_state, spec), InitialStateError);
+  spec["d"] = BodyInitialState();
+  spec["d"].linear_velocity = Eigen::Vector3d(-2e3, 0.0, 0.0);
+  EXPECT_THROW(ApplyInitialState(scene, scene.initial_state, spec), InitialStateError);
+}
+
 TEST(InitialStateYaml, FilesAreReadAndTheirErrorsNameThePath) {
   const Scene scene = TwoBodies();
   const std::string path = ::testing::TempDir() + "/scene_io_initial_state.yaml";

@@ -147,6 +147,23 @@ std::string_view SolverTypeName(SolverType type);
 std::optional<SolverType> SolverTypeFromName(std::string_view name);
 std::string SolverTypeNameList();
 
+/// Upper bound of SolverOptions::max_iterations for one ContactSolver::Solve: the iteration cap is
+/// the solver's work multiplier (each iteration costs O(n²)), so a finite cap alone does not bound
+/// a call (2^31 - 1 iterations of one Tippe-Top contact take 95 s or more: 44 ns each with
+/// Gauss-Seidel, Release, an idle core, bounded_work_test, 2026-12-02). 1e6 is the largest cap the
+/// converged reference solutions of single problems in the tests use; a Simulator, which solves
+/// every step, has the tighter kMaxSimulatorIterations (simulator.h).
+inline constexpr int kMaxSolverIterations = 1000000;
+
+/// Smallest SolverOptions::relaxation α. Without the prox, a component k moves by α/Ĝ_kk·ξ̂_k, so
+/// on a decoupled contact the error contracts by |1 - α| per iteration and reaching a relative
+/// tolerance τ takes about ln(1/τ)/α iterations: 1.2e4 for τ = 1e-5 at α = 1e-3, twelve times the
+/// default cap. Smaller α only buys non-convergence, or worse, a stopping rule fooled by steps
+/// that round to zero (α = 4.9e-324 moves nothing). The smallest α any scene needed: 0.05
+/// (modified Jacobi on 12 coupled feet, docs/settings.md). The upper end stays open, α < 2, the
+/// convergence interval of (43)/(46).
+inline constexpr double kMinRelaxation = 1e-3;
+
 /// Defaults (chosen on the Tippe-Top at Δt = 1e-4, warm-started by the Simulator): Gauss-Seidel
 /// converges where the Jacobi schemes need α < 1 (two or more coupled contacts in stick, e.g. a
 /// block on four feet), and tolerance_rel = 1e-5 reproduces every event time of a 1e-12 run to the
@@ -155,8 +172,9 @@ struct SolverOptions {
   SolverType type = SolverType::kGaussSeidel;
   double tolerance_rel = 1e-5;  ///< relative tolerance on the change of Λ, finite, ≥ 0
   double tolerance_abs = 1e-14; ///< absolute tolerance on the change of Λ [N s], finite, ≥ 0
-  int max_iterations = 1000;    ///< ≥ 1
-  double relaxation = 1.0;      ///< α of (43), in (0, 2)
+  /// in [1, kMaxSolverIterations]; in a Simulator [1, kMaxSimulatorIterations]
+  int max_iterations = 1000;
+  double relaxation = 1.0;      ///< α of (43), in [kMinRelaxation, 2)
   /// Iterate `exact` and `cylinder` on A⁻¹D with A of (56), (40)-(47) (same solution, far fewer
   /// iterations when sliding); false = on the original sets (37), as the paper's B_F timing.
   /// `sphere` is always mapped, `ellipsoid` and `coulomb` never (see the table above).

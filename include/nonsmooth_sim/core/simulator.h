@@ -112,8 +112,21 @@ inline constexpr double kContactHysteresis = 1e-9;
 /// energy, from 0.2 they gain, from 0.4-0.5 they blow up (non-finite state); 0.1 keeps a margin.
 inline constexpr double kExplicitGyroscopicMaxDtOmega = 0.1;
 
+/// Upper bound of SolverOptions::max_iterations in a simulation, where the cap multiplies the work
+/// of every step (per island, and per gyroscopic pass with kImplicitMidpoint). It bounds a step at
+/// 1e5 iterations of each island: 4.4 ms for the Tippe-Top on one contact (Gauss-Seidel, Release,
+/// an idle core; 8-17 ms with the 2 cores shared; bounded_work_test prints it, 2026-12-02; the
+/// contacts of an island cost O(n²) per iteration). 1e5 is the cap the converged references of the
+/// trade study use (scripts/tradeoff, tolerance 1e-12, also on the slow `ellipsoid` set) and the
+/// tightest Simulator tests (dynamics_test, tippe_top_test); the default is 1000.
+/// ValidateSimulatorOptions checks it, and with it `simulate` and the node (parameters and
+/// ~set_solver_properties).
+inline constexpr int kMaxSimulatorIterations = 100000;
+
 struct SimulatorOptions {
   double time_step = 1e-4;  ///< Δt [s], in [1e-7, 1e-2]
+  /// solver.max_iterations in [1, kMaxSimulatorIterations], solver.relaxation in
+  /// [kMinRelaxation, 2) (ValidateSolverOptions, contact_solver.h)
   SolverOptions solver;
   GyroscopicScheme gyroscopic = GyroscopicScheme::kExplicit;
   /// After (15), the closed contacts (12) are evaluated again at q_E (same pair, same feature).

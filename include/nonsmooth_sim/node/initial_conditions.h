@@ -15,24 +15,28 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/scene.h"
+#include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::node {
 
+// Bounds (scene_io/initial_state.h, the same for every start of the node and of `simulate`):
+// position coordinates within kMaxInitialCoordinate, |v| ≤ kMaxInitialSpeed, |spin| and |ω| ≤
+// kMaxInitialAngularSpeed, so that the kinetic energy is finite and Δt·|ω| can be checked.
 struct InitialConditions {
   std::optional<double> inclination;               ///< θ [rad], in [0, π]
-  std::optional<double> spin;                      ///< ω about e3 [rad/s], finite
-  std::optional<Eigen::Vector3d> position;         ///< r_S in the world frame [m]
+  std::optional<double> spin;                      ///< ω about e3 [rad/s], |ω| ≤ 1e4
+  std::optional<Eigen::Vector3d> position;         ///< r_S, world frame [m], |x|, |y|, |z| ≤ 1e3
   std::optional<Eigen::Quaterniond> orientation;   ///< link axes → world, non-zero (normalised)
-  std::optional<Eigen::Vector3d> linear_velocity;  ///< v_S in the world frame [m/s]
-  std::optional<Eigen::Vector3d> angular_velocity; ///< K_ω in the link axes [rad/s]
+  std::optional<Eigen::Vector3d> linear_velocity;  ///< v_S in the world frame [m/s], |v| ≤ 1e3
+  std::optional<Eigen::Vector3d> angular_velocity; ///< K_ω in the link axes [rad/s], |ω| ≤ 1e4
 };
 
 /// Each field of `overrides` that is set, else the one of `defaults`.
 InitialConditions Merge(const InitialConditions& defaults, const InitialConditions& overrides);
 
 /// Throws std::invalid_argument naming the field and the reason (NaN/Inf, θ outside [0, π],
-/// zero quaternion).
+/// zero quaternion, a value beyond its bound above).
 void ValidateInitialConditions(const InitialConditions& initial);
 
 /// The start of every body: `body` from `initial` (unset θ and ω: the core's

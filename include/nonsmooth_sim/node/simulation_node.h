@@ -32,7 +32,6 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
 #include "nonsmooth_sim/node/node_parameters.h"
-#include "nonsmooth_sim/node/node_parameters.h"
 
 namespace nonsmooth_sim::node {
 
@@ -74,6 +73,12 @@ class SimulationNode {
   /// Steps until `budget` steps are done, the deadline passes or the run pauses; returns the steps.
   std::int64_t RunChunk(std::int64_t budget, Clock::time_point deadline);
   void StepOnce();
+  /// The end-of-run log line (~duration reached), once the chunk's wall time is counted.
+  void LogSummaryIfDue();
+  /// [s] of wall time spent unpaused up to `now`.
+  double RunningWall(Clock::time_point now) const;
+  /// A step threw or left a non-finite state: pause, log once, report in /diagnostics (ERROR).
+  void Fault(const std::string& what);
   void Pause(const char* reason);
   void Unpause();
   std::unique_lock<std::mutex> LockForService();
@@ -143,8 +148,12 @@ class SimulationNode {
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;
   RunStatistics period_, total_;
-  double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused
+  double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused, up to the last pause
   Clock::time_point unpaused_at_;
+  double running_sim_time_ = 0.0;  ///< [s] of sim time the integrator advanced while unpaused
+  std::string fault_;        ///< why the last step failed, until a reset ("" = none)
+  std::int64_t faults_ = 0;  ///< failed steps since start
+  bool summary_due_ = false;        ///< ~duration reached: LogSummaryIfDue logs the run
   // reused messages
   tf2_msgs::TFMessage tf_msg_;
   ContactInfoArray contacts_msg_;
@@ -157,16 +166,19 @@ class SimulationNode {
     RunStatistics period;
     std::int64_t unconverged_total = 0;
     double sim_time = 0.0;
-    double real_time_factor = 0.0;  ///< measured over the period
+    double real_time_factor = 0.0;  ///< sim time / wall time while running, over the period
+    double running_wall = 0.0;      ///< [s] the integrator ran (unpaused) in the period
     bool paused = false;
     int closed_contacts = 0;
     std::string friction_sets;
     std::string solver;
     double time_step = 0.0;
     double pace = 0.0;
+    std::string fault;
+    std::int64_t faults = 0;
   } snapshot_;
-  double previous_sim_time_ = 0.0;
-  Clock::time_point previous_diagnostics_wall_;
+  double previous_running_wall_ = 0.0;
+  double previous_running_sim_time_ = 0.0;
 
   std::thread integrator_;  // last: started when everything above exists
 };

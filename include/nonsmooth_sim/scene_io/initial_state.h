@@ -13,7 +13,16 @@
 // RigidBody::com_in_link:
 //   r_S = position + R c,   position = r_S − R c.
 // Given only an orientation, the link frame keeps its default origin and turns about it.
-// Anything else (unknown keys or links, wrong lengths, NaN/Inf, a zero quaternion) is an error.
+// Anything else (unknown keys or links, wrong lengths, NaN/Inf, a zero quaternion, values beyond
+// the bounds below) is an error.
+//
+// Bounds (every start: this file, the node's ~initial_state, ~initial/... and ~reset): finite is
+// not enough (a spin of 1e300 rad/s has an infinite kinetic energy), so each coordinate of a
+// position is within kMaxInitialCoordinate (the loader's kMaxCoordinate), |v| ≤ kMaxInitialSpeed
+// and |ω| ≤ kMaxInitialAngularSpeed. With the loader's bounds on mass and inertia the kinetic
+// energy ½m|v|² + ½ωᵀΘω stays below 1e20 J, and Δt·|ω| (the explicit gyroscopic term's safety
+// measure, simulator.h) at most 100 at the largest Δt. The limits are far beyond the shipped
+// scenes (at most 300 rad/s and 0.44 m/s).
 #ifndef NONSMOOTH_SIM_SCENE_IO_INITIAL_STATE_H_
 #define NONSMOOTH_SIM_SCENE_IO_INITIAL_STATE_H_
 
@@ -28,6 +37,16 @@
 #include "nonsmooth_sim/core/scene.h"
 
 namespace nonsmooth_sim::scene_io {
+
+inline constexpr double kMaxInitialCoordinate = 1e3;     ///< |x|, |y|, |z| of a position [m]
+inline constexpr double kMaxInitialSpeed = 1e3;          ///< |v_S| [m/s]
+inline constexpr double kMaxInitialAngularSpeed = 1e4;   ///< |ω| [rad/s]
+
+/// Throws std::invalid_argument "<what>: <reason>" unless the value is within its bound above:
+/// a position's coordinates, a linear or an angular velocity's norm (NaN and Inf fail too).
+void CheckInitialPosition(const std::string& what, const Eigen::Vector3d& position);
+void CheckInitialLinearVelocity(const std::string& what, const Eigen::Vector3d& velocity);
+void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d& velocity);
 
 /// A malformed initial state. what(): one line,
 /// "initial state: bodies.<link>.<key> (line n): <reason>; <what is allowed>".
@@ -48,13 +67,15 @@ struct BodyInitialState {
 /// By body (link) name.
 using InitialStateSpec = std::map<std::string, BodyInitialState>;
 
-/// Parses and checks the YAML text (keys, lengths, finite numbers, non-zero quaternions; the
-/// orientation is normalised). An empty document is an empty spec. Throws InitialStateError.
+/// Parses and checks the YAML text (keys, lengths, finite numbers, non-zero quaternions, the
+/// bounds above; the orientation is normalised). An empty document is an empty spec. Throws
+/// InitialStateError.
 InitialStateSpec ParseInitialStateYaml(const std::string& yaml_text);
 
 /// `defaults` (one per body, usually scene.initial_state) with every part given in `spec`
 /// replaced (see the top of this file). Throws InitialStateError for a name that is not a body
-/// of the scene (listing the bodies), std::invalid_argument if `defaults` does not fit the scene.
+/// of the scene (listing the bodies) and for a part of `spec` or a resulting centre of mass
+/// beyond the bounds above, std::invalid_argument if `defaults` does not fit the scene.
 std::vector<BodyState> ApplyInitialState(const Scene& scene,
                                          const std::vector<BodyState>& defaults,
                                          const InitialStateSpec& spec);

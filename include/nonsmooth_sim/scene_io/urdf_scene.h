@@ -49,6 +49,26 @@
 // definite, degenerate shapes, NaN or Inf in any number, a typo in a <nonsmooth_sim> block, a
 // collision name used twice, a static link with mass, ...). Overlapping bodies are not checked
 // here (the simulator reports them).
+//
+// Bounds: what loads is a simulable rigid body. Finite is not enough (mass 4.9e-324 passes "> 0"
+// and makes M⁻¹ infinite at the first step), so every number has a range wide enough for any
+// body on a desk or a factory floor and narrow enough that M⁻¹, G = W M⁻¹ Wᵀ, the friction radii
+// and the energy stay finite with room to spare (the constants below; docs/urdf.md, "Bounds"):
+//  - mass of each <inertial> and of each body (links merged) in [kMinMass, kMaxMass];
+//  - the principal moments of each <inertia> and each body (eigenvalues of Θ) > 0 and each at most
+//    the sum of the other two (the triangle inequality every rigid body satisfies,
+//    I₃ = ∫(x² + y²) ≤ ∫(y² + z²) + ∫(x² + z²)), up to kInertiaTriangleTolerance relative;
+//  - every radius of gyration √(Iᵢ/m) in [kMinGyrationRadius, kMaxGyrationRadius], and for a body
+//    with colliders the largest at most kGyrationSizeFactor times the body's extent (the farthest
+//    point of its collision shapes from S): a body's mass cannot lie far outside what it touches
+//    with;
+//  - every <origin xyz> coordinate in links and joints, and every composed pose (a body's start,
+//    a collider relative to its body or in the world), |x|, |y|, |z| ≤ kMaxCoordinate;
+//  - collision radii, lengths, box sizes, semi-axes in [kMinLength, kMaxLength] (a capsule's
+//    length in [0, kMaxLength]);
+//  - μ, μ₂ and μ_τ in [0, kMaxFriction]; the patch radius R (or the option) in [0, kMaxLength] and
+//    at most the bounding radius of each shape of a free body it applies to (the contact patch lies
+//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity].
 #ifndef NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 #define NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 
@@ -62,6 +82,23 @@
 
 namespace nonsmooth_sim::scene_io {
 
+/// The loader's bounds (see "Bounds" above).
+inline constexpr double kMinMass = 1e-6;  ///< [kg]: a grain of sand; M⁻¹ ≤ 1e6 1/kg
+inline constexpr double kMaxMass = 1e6;   ///< [kg]: a thousand tonnes
+/// |x|, |y|, |z| of every origin and composed pose [m]: 1 km keeps positions resolved to 1e-13 m
+inline constexpr double kMaxCoordinate = 1e3;
+inline constexpr double kMinLength = 1e-5;  ///< radii, lengths, sizes [m]: 10 µm
+inline constexpr double kMaxLength = 1e3;   ///< [m]
+inline constexpr double kMaxFriction = 1e3;  ///< μ, μ₂, μ_τ (the core's stability tests reach 1e3)
+inline constexpr double kMaxGravity = 1e3;   ///< g [m/s²], about 100 g
+/// Relative slack of the triangle inequality of the principal moments: rounded inertia entries of
+/// a flat body (I₃ = I₁ + I₂ exactly) must still load.
+inline constexpr double kInertiaTriangleTolerance = 1e-3;
+inline constexpr double kMinGyrationRadius = 1e-6;  ///< √(Iᵢ/m) [m]
+inline constexpr double kMaxGyrationRadius = 1e3;   ///< √(Iᵢ/m) [m]
+/// √(I_max/m) ≤ this × the body's extent (a thin ring of the body's size has √(I/m) = extent).
+inline constexpr double kGyrationSizeFactor = 100.0;
+
 /// A malformed or inconsistent URDF. what(): one line, "urdf: <element>: <reason>".
 class UrdfError : public std::invalid_argument {
  public:
@@ -69,11 +106,14 @@ class UrdfError : public std::invalid_argument {
 };
 
 struct UrdfSceneOptions {
-  double gravity = 9.81;  ///< g [m/s²], finite, ≥ 0, acting along -z
+  double gravity = 9.81;  ///< g [m/s²], in [0, kMaxGravity], acting along -z
   /// friction set of the links without <nonsmooth_sim><friction_set>
   FrictionSet friction_set = FrictionSet::kSphere;
-  std::optional<double> mu;  ///< replaces ode/mu and torsional/coefficient of every link, ≥ 0
-  std::optional<double> contact_radius;  ///< replaces torsional/patch_radius R [m], ≥ 0
+  /// replaces ode/mu and torsional/coefficient of every link, in [0, kMaxFriction]
+  std::optional<double> mu;
+  /// replaces torsional/patch_radius R [m], in [0, kMaxLength] and at most the bounding radius of
+  /// every collision shape of a free body (checked by the loader against the scene)
+  std::optional<double> contact_radius;
   bool ground = true;  ///< append the core's GroundPlane() (z = 0, "ground") as the last collider
 };
 

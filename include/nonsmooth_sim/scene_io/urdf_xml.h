@@ -18,9 +18,9 @@ namespace nonsmooth_sim::scene_io {
 
 /// Contact parameters of one link's collisions, with SDF's defaults where a tag is absent.
 struct LinkSurface {
-  double mu = 1.0;                     ///< ode/mu (SDF default 1), ≥ 0
-  double torsional_coefficient = 1.0;  ///< torsional/coefficient μ_τ (SDF default 1), ≥ 0
-  double patch_radius = 0.0;           ///< torsional/patch_radius R [m] (SDF default 0), ≥ 0
+  double mu = 1.0;                     ///< ode/mu (SDF default 1), in [0, kMaxFriction]
+  double torsional_coefficient = 1.0;  ///< torsional/coefficient μ_τ (SDF default 1), same
+  double patch_radius = 0.0;           ///< torsional/patch_radius R [m] (default 0), ≤ kMaxLength
   double restitution = 0.0;            ///< ε of (14), in [0, 1]
   /// <nonsmooth_sim><friction_set>; unset: the loader option UrdfSceneOptions::friction_set
   std::optional<FrictionSet> friction_set;
@@ -54,9 +54,10 @@ struct UrdfXml {
 /// Parses `xml` and checks it (throws UrdfError, see urdf_scene.h): well-formed XML with a <robot>
 /// root; every numeric attribute of links and joints made of finite numbers (the count each URDF
 /// attribute needs); masses, sphere/cylinder radii, lengths and box sizes > 0; every <inertial>
-/// with a <mass> and an <inertia>; Gazebo friction values finite and ≥ 0; the <nonsmooth_sim>
-/// blocks strictly: known elements and attributes only, values in range, shapes not degenerate.
-/// Returns the extension data.
+/// with a <mass> and an <inertia>; the element-level bounds of urdf_scene.h ("Bounds": origins,
+/// masses, collision sizes, friction μ/μ₂/μ_τ in [0, kMaxFriction], patch radius in
+/// [0, kMaxLength]); the <nonsmooth_sim> blocks strictly: known elements and attributes only,
+/// values in range, shapes not degenerate. Returns the extension data.
 UrdfXml ParseUrdfXml(const std::string& xml);
 
 /// Parses one number exactly (no trailing characters, finite); false otherwise.

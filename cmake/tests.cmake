@@ -1,0 +1,28 @@
+# Tests and benchmarks of everything but the ROS layer (whose tests are in cmake/ros.cmake).
+# Included from CMakeLists.txt when CATKIN_ENABLE_TESTING (always on without ROS). Every
+# test/<dir>/*_test.cpp is one GoogleTest executable, one ctest entry per TEST (cmake/gtests.cmake).
+include(${PROJECT_SOURCE_DIR}/cmake/gtests.cmake)
+
+nonsmooth_sim_add_gtests(DIR test/core LIBRARIES nonsmooth_sim_core)
+# "scene_io.<Suite>.<Test>" (the node has a urdf_scene_test of its own)
+nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
+nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collision_fcl)
+# Physics of the shipped scenes (urdf/*.urdf + config/*.yaml through the loader, stepped by the
+# core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
+nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes
+                         LIBRARIES nonsmooth_sim_scene_io nonsmooth_sim_core)
+
+# ---------------------------------------------------------------------------------------------
+# Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:
+# the core's pieces, the shape pairs (closed forms next to FCL), one step of each shipped scene.
+find_package(benchmark QUIET)
+file(GLOB NONSMOOTH_SIM_BENCH_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bench/*_bench.cpp)
+if(benchmark_FOUND AND NONSMOOTH_SIM_BENCH_SOURCES)
+  add_executable(nonsmooth_sim_bench EXCLUDE_FROM_ALL ${NONSMOOTH_SIM_BENCH_SOURCES})
+  add_dependencies(tests nonsmooth_sim_bench)  # built with the tests, not installed
+  target_link_libraries(nonsmooth_sim_bench PRIVATE nonsmooth_sim_core nonsmooth_sim_scene_io
+    nonsmooth_sim_collision_fcl benchmark::benchmark benchmark::benchmark_main)
+  set_target_properties(nonsmooth_sim_bench PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
+  target_compile_definitions(nonsmooth_sim_bench PRIVATE
+    NONSMOOTH_SIM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endif()
