@@ -18,10 +18,13 @@ find_package(catkin REQUIRED COMPONENTS
 # ---------------------------------------------------------------------------------------------
 # Messages and services (generated headers: build/devel/include/nonsmooth_sim/).
 add_message_files(DIRECTORY msg FILES
-  BodyInfo.msg ContactInfo.msg ContactInfoArray.msg SimulationState.msg)
+  BodyInfo.msg ContactInfo.msg ContactInfoArray.msg ModelState.msg SimulationState.msg)
+# the world services' types have the names, fields and field types of gazebo_msgs (ROS 1)
 add_service_files(DIRECTORY srv FILES
-  GetFrictionSet.srv GetSimulationState.srv GetSolverProperties.srv ResetState.srv
-  SetFrictionSet.srv SetSolverProperties.srv StepSimulation.srv)
+  ApplyBodyWrench.srv BodyRequest.srv DeleteModel.srv GetFrictionSet.srv GetModelProperties.srv
+  GetModelState.srv GetSimulationState.srv GetSolverProperties.srv GetWorldProperties.srv
+  ResetState.srv SetFrictionSet.srv SetModelState.srv SetSolverProperties.srv SpawnModel.srv
+  StepSimulation.srv)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs)
 
 # What a package that depends on this one gets: the headers, the libraries (core, scene loader,

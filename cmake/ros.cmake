@@ -9,7 +9,8 @@ add_library(nonsmooth_sim_ros STATIC
   src/node/initial_conditions.cpp
   src/node/node_parameters.cpp
   src/node/node_services.cpp
-  src/node/simulation_node.cpp)
+  src/node/simulation_node.cpp
+  src/node/world_services.cpp)
 # the message headers (build/devel/include) and catkin's come from include_directories() in
 # cmake/catkin.cmake
 target_include_directories(nonsmooth_sim_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
@@ -74,6 +75,7 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_bad_urdf_test)
   nonsmooth_sim_rostest(node_scene_test)
   nonsmooth_sim_rostest(node_diagnostics_test)
+  nonsmooth_sim_rostest(node_world_test)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

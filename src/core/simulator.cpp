@@ -68,6 +68,14 @@ Simulator::Simulator(Scene scene, SimulatorOptions options)
 }
 
 void Simulator::Initialize() {
+  BuildCaches();
+  memory_.clear();
+  contacts_.clear();
+  wrench_.assign(scene_.bodies.size(), Wrench{});
+  any_wrench_ = false;
+}
+
+void Simulator::BuildCaches() {
   const std::size_t bodies = scene_.bodies.size();
   inertia_.clear();
   for (const RigidBody& body : scene_.bodies) {
@@ -104,8 +112,6 @@ void Simulator::Initialize() {
   closed_count_ = 0;
   contacts_.reserve(2 * scene_.colliders.size());
   memory_.reserve(4 * scene_.colliders.size());
-  memory_.clear();
-  contacts_.clear();
 }
 
 StepStatistics Simulator::Step() {
@@ -154,9 +160,11 @@ void Simulator::Step(StepStatistics* out) {
     for (std::size_t b = 0; b < state_.size(); ++b) {
       BodyStep& w = body_step_[b];
       if (w.island >= 0) continue;
-      w.angular_end =
-          ImplicitMidpointEuler(inertia_[b], state_[b].angular_velocity, Eigen::Vector3d::Zero(),
-                                options_.time_step, w.angular_free);
+      // torque-free unless an external torque acts (its impulse in K, ComputeMidpoints)
+      const Eigen::Vector3d impulse =
+          w.external ? w.angular_external : Eigen::Vector3d(Eigen::Vector3d::Zero());
+      w.angular_end = ImplicitMidpointEuler(inertia_[b], state_[b].angular_velocity, impulse,
+                                            options_.time_step, w.angular_free);
     }
   }
   if (!finite || !ComputeEndState()) {
@@ -206,6 +214,15 @@ void Simulator::ComputeMidpoints(StepStatistics* stats, bool* finite) {
     w.linear_free = s.linear_velocity + dt * scene_.gravity;
     w.gyroscopic_impulse = dt * GyroscopicTorque(body.inertia, s.angular_velocity);
     w.angular_free = s.angular_velocity + body.inverse_inertia * w.gyroscopic_impulse;
+    // the external wrench enters h(q_M, u_B) with gravity: v += Δt F/m, ω += Θ⁻¹ Δt A(p_M)ᵀτ
+    // (A(p_B) would be first order in the torque's turning); skipped without one, so that a world
+    // without wrenches steps exactly as before
+    w.external = any_wrench_ && wrench_[b].set;
+    if (w.external) {
+      w.linear_free += (dt * body.inverse_mass) * wrench_[b].force;
+      w.angular_external = dt * (w.rotation_mid.transpose() * wrench_[b].torque);
+      w.angular_free += body.inverse_inertia * w.angular_external;
+    }
     w.angular_end = w.angular_free;
     w.linear_contact.setZero();
     w.angular_contact.setZero();

@@ -147,8 +147,12 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       const Eigen::Vector3d guess =
           pass == 0 ? Eigen::Vector3d(w.angular_free + body.inverse_inertia * w.angular_contact)
                     : w.angular_end;
-      const Eigen::Vector3d omega_end =
-          ImplicitMidpointEuler(body, omega_begin, w.angular_contact, dt, guess);
+      // an external torque's impulse with the contacts' (then gyroscopic_impulse below holds it
+      // too, and angular_free stays ω_B + Θ⁻¹ times the impulse of h)
+      const Eigen::Vector3d omega_end = ImplicitMidpointEuler(
+          body, omega_begin,
+          w.external ? Eigen::Vector3d(w.angular_contact + w.angular_external) : w.angular_contact,
+          dt, guess);
       if ((omega_end - guess).norm() > pass_tolerance * omega_end.norm()) settled = false;
       w.angular_end = omega_end;
       // the gyroscopic impulse -Δt ω_M × Θω_M that this ω_E balances

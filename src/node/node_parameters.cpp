@@ -183,6 +183,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
         "no URDF: set the robot_description parameter (a string) or ~urdf_file");
   }
   r.String("world_frame", &p.world_frame);
+  r.String("model_name", &p.model_name);
 
   // scene
   r.Number("gravity", &p.scene.gravity);

@@ -72,6 +72,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       private_nh_(private_nh),
       updater_(nh, private_nh) {
   sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+  BuildModels();
   paused_ = parameters_.paused;
   for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
 
@@ -102,6 +103,12 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       p.advertiseService("get_solver_properties", &SimulationNode::OnGetSolverProperties, this),
       p.advertiseService("set_solver_properties", &SimulationNode::OnSetSolverProperties, this),
       p.advertiseService("get_state", &SimulationNode::OnGetState, this),
+      p.advertiseService("get_world_properties", &SimulationNode::OnGetWorldProperties, this),
+      p.advertiseService("get_model_properties", &SimulationNode::OnGetModelProperties, this),
+      p.advertiseService("get_model_state", &SimulationNode::OnGetModelState, this),
+      p.advertiseService("set_model_state", &SimulationNode::OnSetModelState, this),
+      p.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this),
+      p.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this),
   };
 
   updater_.setHardwareID("nonsmooth_sim");
@@ -220,6 +227,7 @@ std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point dea
 
 void SimulationNode::StepOnce() {
   try {
+    if (wrenches_active_) ApplyWrenches();
     last_step_ = sim_->Step();
   } catch (const std::exception& e) {
     // the core validates its inputs and throws on what it cannot step; never abort the node

@@ -654,6 +654,7 @@ UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& opt
   if (!model || !model->getRoot()) throw UrdfError("urdf: urdfdom could not build the model");
 
   UrdfScene result = Builder(*model, xml, options).Build();
+  result.robot_name = model->getName();
   try {
     ValidateScene(result.scene);
   } catch (const std::invalid_argument& e) {

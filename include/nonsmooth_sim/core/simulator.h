@@ -60,6 +60,7 @@
 #include <string>
 #include <unordered_map>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "nonsmooth_sim/core/collision/broad_phase.h"
@@ -250,6 +251,34 @@ class Simulator {
 
   double Energy() const { return MechanicalEnergy(scene_, state_); }
 
+  // --- the world changed between two steps (simulator_world.cpp)
+
+  /// Appends the bodies and colliders of `model` (its colliders' `body` index model.bodies, or
+  /// kWorld for static ones) with the start states `state` (one per model body), between two
+  /// steps. The bodies already there keep their state, warm starts and tangent frames. The merged
+  /// scene is validated like the constructor's (unique names, ranges; also a non-empty body name
+  /// must not be in use): throws std::invalid_argument and changes nothing on bad input. The
+  /// model's initial_state and gravity are not used. Returns the index of the first new body (the
+  /// new bodies are scene().bodies[first ...], the new colliders appended in order).
+  int AddBodies(const Scene& model, const std::vector<BodyState>& state);
+  /// Removes the bodies `bodies` (indices into scene(), any order, no repeats) and the colliders
+  /// on them, and `colliders` (indices of static colliders, e.g. a model's fixed links), between
+  /// two steps. The rest keep their state, their contacts' warm starts, tangent frames and friction
+  /// sets (re-indexed, the order of the remaining bodies and colliders kept): from this step on
+  /// they move exactly as in a world that never had what was removed. Throws std::out_of_range and
+  /// changes nothing for a bad index (std::invalid_argument for a repeated index or a collider in
+  /// `colliders` that is on a body). Removing every body is allowed (an empty world steps).
+  void RemoveBodies(const std::vector<int>& bodies, const std::vector<int>& colliders = {});
+  /// An external force (world axes, through the centre of mass) [N] and torque (world axes) [N m]
+  /// on body `body`, constant over every following step until changed: it enters h in (14)
+  /// with gravity (the torque turned into body axes by A(p_M), at the midpoint q_M where (14)
+  /// evaluates h: second order with kImplicitMidpoint, where A(p_B) is first order). Zero by
+  /// default; a zero wrench is none (the step is the one without). Throws std::out_of_range for
+  /// a bad body, std::invalid_argument for a non-finite value (nothing changed).
+  void SetExternalWrench(int body, const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
+  /// The external wrench of `body`: (force, torque), world axes.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> ExternalWrench(int body) const;
+
  private:
   // Per-body midpoint data of the current step.
   struct BodyStep {
@@ -266,7 +295,16 @@ class Simulator {
     Eigen::Vector3d linear_end;          // v_E [m/s]
     Eigen::Vector3d position_end;        // r_S(q_E) [m]
     Eigen::Quaterniond orientation_end;  // p_E, normalised
+    // Δt·A(p_M)ᵀτ: the external torque's impulse in K [N m s], valid if `external`
+    Eigen::Vector3d angular_external;
+    bool external = false;               // an external wrench acts on the body in this step
     int island = -1;                     // index into islands_ (-1: no closed contact)
+  };
+  // The external wrench of one body (SetExternalWrench), world axes.
+  struct Wrench {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], through S
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // [N m]
+    bool set = false;                                  // not both zero
   };
   // Memory of one (pair, feature) across steps.
   struct ContactMemory {
@@ -299,6 +337,10 @@ class Simulator {
   };
 
   void Initialize();
+  // the per-body and per-collider arrays derived from scene_ (inertia_, planes_, needs_sweep_,
+  // collider poses, radii, the step's workspace sizes): by Initialize and after AddBodies /
+  // RemoveBodies; keeps the warm-start memory, the contact report and the wrenches
+  void BuildCaches();
   void ComputeMidpoints(StepStatistics* stats, bool* finite);
   void FindContacts(StepStatistics* stats);
   void AddPairContacts(int first, int second);
@@ -340,6 +382,10 @@ class Simulator {
   std::vector<double> bounding_radius_;  // per collider: BoundingRadius of its shape [m]
   // warm starts and tangent frames by (pair, feature)
   std::unordered_map<std::uint64_t, ContactMemory> memory_;
+  // per body: the external wrench (SetExternalWrench); any_wrench_: one of them is set (a world
+  // without one skips the work in ComputeMidpoints)
+  std::vector<Wrench> wrench_;
+  bool any_wrench_ = false;
   // workspace of Step(), sized once
   std::vector<BodyStep> body_step_;
   std::vector<BoundingSphere> spheres_;

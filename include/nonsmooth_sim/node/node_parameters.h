@@ -26,6 +26,8 @@ struct NodeParameters {
                                   ///< the robot_description parameter
   std::string urdf_xml;           ///< the URDF text (filled from either source)
   std::string world_frame = "world";  ///< ~world_frame: fixed frame of TF, markers, contacts
+  std::string model_name;         ///< ~model_name: the URDF's model in the world services
+                                  ///< (default: its <robot name>)
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
                                   ///< ~max_iterations, ~relaxation, ~gyroscopic,

@@ -22,7 +22,13 @@
 #include <thread>
 #include <vector>
 
+#include "nonsmooth_sim/ApplyBodyWrench.h"
+#include "nonsmooth_sim/BodyRequest.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
+#include "nonsmooth_sim/GetModelProperties.h"
+#include "nonsmooth_sim/GetModelState.h"
+#include "nonsmooth_sim/GetWorldProperties.h"
+#include "nonsmooth_sim/SetModelState.h"
 #include "nonsmooth_sim/GetSimulationState.h"
 #include "nonsmooth_sim/GetSolverProperties.h"
 #include "nonsmooth_sim/ResetState.h"
@@ -54,6 +60,24 @@ class SimulationNode {
     std::int64_t period = 0;
     std::int64_t countdown = 0;
   };
+
+  /// A model of the world (get_world_properties): the bodies and colliders of one URDF.
+  struct Model {
+    std::string name;
+    std::vector<int> bodies;     ///< free bodies; the first is the canonical one
+    std::vector<int> colliders;  ///< its collisions (on its bodies and its static links)
+  };
+  /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
+  struct ExternalWrench {
+    int body = 0;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< world axes [N]
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< world axes [N m]
+    Eigen::Vector3d point_in_body = Eigen::Vector3d::Zero();  ///< from S, body axes [m]
+    double start = 0.0;
+    double end = 0.0;  ///< +inf: until cleared
+  };
+  /// |force| and |torque| of ~apply_body_wrench at most this [N], [N m].
+  static constexpr double kMaxExternalForce = 1e6;
 
   /// Accumulated over a diagnostics period (and over the whole run).
   struct RunStatistics {
@@ -107,6 +131,20 @@ class SimulationNode {
   bool OnSetSolverProperties(SetSolverProperties::Request& req,
                              SetSolverProperties::Response& res);
   bool OnGetState(GetSimulationState::Request&, GetSimulationState::Response& res);
+  // --- world services (world_services.cpp)
+  bool OnGetWorldProperties(GetWorldProperties::Request&, GetWorldProperties::Response& res);
+  bool OnGetModelProperties(GetModelProperties::Request& req, GetModelProperties::Response& res);
+  bool OnGetModelState(GetModelState::Request& req, GetModelState::Response& res);
+  bool OnSetModelState(SetModelState::Request& req, SetModelState::Response& res);
+  bool OnApplyBodyWrench(ApplyBodyWrench::Request& req, ApplyBodyWrench::Response& res);
+  bool OnClearBodyWrenches(BodyRequest::Request& req, BodyRequest::Response& res);
+  void BuildModels();
+  int ModelIndex(const std::string& name) const;       ///< -1 if unknown
+  std::string ModelNames() const;                      ///< "a, b"
+  int ScopedBodyIndex(const std::string& name) const;  ///< "<model>::<link>" or "<link>"; -1
+  std::string ScopedBodyName(int body) const;          ///< "<model>::<link>"
+  /// Sets the core's external wrenches for the next step from wrenches_ (integrator).
+  void ApplyWrenches();
 
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
@@ -148,6 +186,10 @@ class SimulationNode {
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;
   RunStatistics period_, total_;
+  std::vector<Model> models_;
+  std::vector<ExternalWrench> wrenches_;
+  bool wrenches_active_ = false;  ///< ApplyWrenches before the next step
+  std::vector<Eigen::Vector3d> wrench_force_, wrench_torque_;  ///< per body, reused
   double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused, up to the last pause
   Clock::time_point unpaused_at_;
   double running_sim_time_ = 0.0;  ///< [s] of sim time the integrator advanced while unpaused

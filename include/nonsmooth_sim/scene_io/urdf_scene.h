@@ -118,6 +118,7 @@ struct UrdfSceneOptions {
 };
 
 struct UrdfScene {
+  std::string robot_name;  ///< <robot name="...">
   /// Bodies, colliders and laws; initial_state holds every body at its URDF pose, at rest
   /// (initial_state.h applies a configured start).
   Scene scene;

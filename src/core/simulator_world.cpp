@@ -1,0 +1,252 @@
+// The world changed between two steps, see simulator.h: bodies added and removed, external
+// wrenches.
+//
+// Everything that holds a body or collider index is carried over:
+//  - AddBodies appends bodies and colliders, so every index already held (the warm-start and
+//    tangent-frame memory keyed by (collider pair, feature), the friction sets set per contact, the
+//    contact report, the wrenches) stays valid as it is.
+//  - RemoveBodies keeps the order of what remains: old → new index maps that are increasing, under
+//    which every (first < second) collider pair stays ordered, and the contacts of the remaining
+//    pairs keep their relative order (the Gauss-Seidel order of an island). The memory is re-keyed
+//    through the collider map (entries of removed colliders dropped), and so are the friction sets
+//    per pair and the contact report; the wrenches are filtered by the body map.
+// Both build the new scene, state and indexed data in locals, validate, and only then swap them
+// in; the arrays derived from the scene are rebuilt by BuildCaches (as in the constructor).
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "nonsmooth_sim/core/simulator.h"
+
+namespace nonsmooth_sim {
+namespace {
+
+// The layout of a contact memory's key (ContactKey in simulator_contacts.cpp): first collider,
+// second collider, feature in 24 + 24 + 16 bits; first < second.
+constexpr int kKeyFirstShift = 40;
+constexpr int kKeySecondShift = 16;
+constexpr std::uint64_t kKeyColliderMask = 0xffffff;
+constexpr std::uint64_t kKeyFeatureMask = 0xffff;
+
+// The key with both colliders mapped by `map` (old → new index, -1: removed); false if one of
+// them was removed.
+bool RekeyContact(std::uint64_t key, const std::vector<int>& map, std::uint64_t* out) {
+  const std::size_t first = static_cast<std::size_t>(key >> kKeyFirstShift);
+  const std::size_t second = static_cast<std::size_t>((key >> kKeySecondShift) & kKeyColliderMask);
+  if (first >= map.size() || second >= map.size()) return false;  // not a key of this scene
+  const int new_first = map[first];
+  const int new_second = map[second];
+  if (new_first < 0 || new_second < 0) return false;
+  *out = (static_cast<std::uint64_t>(new_first) << kKeyFirstShift) |
+         (static_cast<std::uint64_t>(new_second) << kKeySecondShift) | (key & kKeyFeatureMask);
+  return true;
+}
+
+int MapBody(int body, const std::vector<int>& map) {
+  return body == kWorld ? kWorld : map[static_cast<std::size_t>(body)];
+}
+
+// ValidateScene, also for a scene of static colliders only (ValidateScene asks for a body: the
+// constructor's scene needs one, a world between two steps may have none).
+void ValidateWorld(const Scene& scene) {
+  if (!scene.bodies.empty()) {
+    ValidateScene(scene);
+    return;
+  }
+  Scene probe = scene;  // its colliders are all static: a body appended is referenced by none
+  probe.bodies.emplace_back();
+  probe.initial_state.emplace_back();
+  ValidateScene(probe);
+}
+
+std::string IndexRange(int index, std::size_t count) {
+  return std::to_string(index) + " not in [0, " + std::to_string(count) + ")";
+}
+
+}  // namespace
+
+int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state) {
+  const int first = static_cast<int>(scene_.bodies.size());
+  if (state.size() != model.bodies.size()) {
+    throw std::invalid_argument("AddBodies: " + std::to_string(state.size()) +
+                                " start states for " + std::to_string(model.bodies.size()) +
+                                " bodies (one per model body)");
+  }
+  // the model's collider → body indices before they are shifted (a shifted -2 would name a body
+  // already there)
+  for (std::size_t i = 0; i < model.colliders.size(); ++i) {
+    const int body = model.colliders[i].body;
+    if (body != kWorld && (body < 0 || static_cast<std::size_t>(body) >= model.bodies.size())) {
+      throw std::invalid_argument("AddBodies: model.colliders[" + std::to_string(i) + "] (" +
+                                  model.colliders[i].name + ").body = " + std::to_string(body) +
+                                  ": must index model.bodies (in [0, " +
+                                  std::to_string(model.bodies.size()) + ")) or be kWorld (-1)");
+    }
+  }
+  // body names (where given) address the models: unique across the world
+  {
+    std::unordered_set<std::string> names;
+    for (const RigidBody& body : scene_.bodies) {
+      if (!body.name.empty()) names.insert(body.name);
+    }
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      const std::string& name = model.bodies[b].name;
+      if (!name.empty() && !names.insert(name).second) {
+        throw std::invalid_argument("AddBodies: model.bodies[" + std::to_string(b) + "] (" + name +
+                                    ").name is already used by a body");
+      }
+    }
+  }
+  // the merged scene: appended, validated like the constructor's before anything changes
+  Scene merged = scene_;
+  merged.bodies.insert(merged.bodies.end(), model.bodies.begin(), model.bodies.end());
+  merged.initial_state.insert(merged.initial_state.end(), state.begin(), state.end());
+  for (const Collider& collider : model.colliders) {
+    merged.colliders.push_back(collider);
+    if (collider.body != kWorld) merged.colliders.back().body += first;
+  }
+  ValidateWorld(merged);
+  std::vector<BodyState> merged_state = state_;
+  for (const BodyState& s : state) {
+    merged_state.push_back(s);
+    merged_state.back().orientation.normalize();
+  }
+  std::vector<Wrench> merged_wrench = wrench_;
+  merged_wrench.resize(merged.bodies.size());
+
+  // commit: the memory, friction sets per pair, contact report and wrenches keep their indices
+  scene_ = std::move(merged);
+  state_ = std::move(merged_state);
+  wrench_ = std::move(merged_wrench);
+  BuildCaches();
+  closed_count_ = 0;
+  return first;
+}
+
+void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<int>& colliders) {
+  const std::size_t body_count = scene_.bodies.size();
+  const std::size_t collider_count = scene_.colliders.size();
+  std::vector<char> remove_body(body_count, 0);
+  for (int b : bodies) {
+    if (b < 0 || static_cast<std::size_t>(b) >= body_count) {
+      throw std::out_of_range("RemoveBodies: body index " + IndexRange(b, body_count));
+    }
+    if (remove_body[static_cast<std::size_t>(b)]) {
+      throw std::invalid_argument("RemoveBodies: body index " + std::to_string(b) + " given twice");
+    }
+    remove_body[static_cast<std::size_t>(b)] = 1;
+  }
+  std::vector<char> remove_collider(collider_count, 0);
+  for (int i : colliders) {
+    if (i < 0 || static_cast<std::size_t>(i) >= collider_count) {
+      throw std::out_of_range("RemoveBodies: collider index " + IndexRange(i, collider_count));
+    }
+    const Collider& c = scene_.colliders[static_cast<std::size_t>(i)];
+    if (c.body != kWorld) {
+      throw std::invalid_argument("RemoveBodies: collider " + std::to_string(i) + " (" + c.name +
+                                  ") is on a body, not static: remove its body");
+    }
+    if (remove_collider[static_cast<std::size_t>(i)]) {
+      throw std::invalid_argument("RemoveBodies: collider index " + std::to_string(i) +
+                                  " given twice");
+    }
+    remove_collider[static_cast<std::size_t>(i)] = 1;
+  }
+
+  // old → new indices, increasing (-1: removed)
+  std::vector<int> body_map(body_count, -1);
+  Scene rest;
+  rest.gravity = scene_.gravity;
+  std::vector<BodyState> rest_state;
+  std::vector<Wrench> rest_wrench;
+  for (std::size_t b = 0; b < body_count; ++b) {
+    if (remove_body[b]) continue;
+    body_map[b] = static_cast<int>(rest.bodies.size());
+    rest.bodies.push_back(scene_.bodies[b]);
+    rest.initial_state.push_back(scene_.initial_state[b]);
+    rest_state.push_back(state_[b]);
+    rest_wrench.push_back(wrench_[b]);
+  }
+  std::vector<int> collider_map(collider_count, -1);
+  for (std::size_t i = 0; i < collider_count; ++i) {
+    const Collider& c = scene_.colliders[i];
+    if (remove_collider[i] || (c.body != kWorld && remove_body[static_cast<std::size_t>(c.body)])) {
+      continue;
+    }
+    collider_map[i] = static_cast<int>(rest.colliders.size());
+    rest.colliders.push_back(c);
+    rest.colliders.back().body = MapBody(c.body, body_map);
+  }
+  // warm starts and tangent frames by (pair, feature), re-keyed
+  std::unordered_map<std::uint64_t, ContactMemory> rest_memory;
+  rest_memory.reserve(memory_.size());
+  for (const auto& [key, memory] : memory_) {
+    std::uint64_t new_key = 0;
+    if (RekeyContact(key, collider_map, &new_key)) rest_memory.emplace(new_key, memory);
+  }
+  // friction sets per pair (first < second stays ordered: the map is increasing)
+  std::vector<std::pair<std::pair<int, int>, FrictionSet>> rest_sets;
+  for (const auto& [pair, set] : pair_sets_) {
+    const int a = collider_map[static_cast<std::size_t>(pair.first)];
+    const int b = collider_map[static_cast<std::size_t>(pair.second)];
+    if (a >= 0 && b >= 0) rest_sets.emplace_back(std::make_pair(a, b), set);
+  }
+  // the last step's contact report, of what remains
+  std::vector<ContactState> rest_contacts;
+  rest_contacts.reserve(contacts_.capacity());
+  for (const ContactState& contact : contacts_) {
+    const int a = collider_map[static_cast<std::size_t>(contact.collider_a)];
+    const int b = collider_map[static_cast<std::size_t>(contact.collider_b)];
+    if (a < 0 || b < 0) continue;
+    ContactState& kept = rest_contacts.emplace_back(contact);
+    kept.collider_a = a;
+    kept.collider_b = b;
+    kept.body_a = MapBody(contact.body_a, body_map);
+    kept.body_b = MapBody(contact.body_b, body_map);
+  }
+  bool any_wrench = false;
+  for (const Wrench& w : rest_wrench) any_wrench = any_wrench || w.set;
+
+  // commit
+  scene_ = std::move(rest);
+  state_ = std::move(rest_state);
+  wrench_ = std::move(rest_wrench);
+  any_wrench_ = any_wrench;
+  memory_ = std::move(rest_memory);
+  pair_sets_ = std::move(rest_sets);
+  contacts_ = std::move(rest_contacts);
+  BuildCaches();
+  closed_count_ = 0;  // closed_ pointed into the old memory; rewritten by the next step
+}
+
+void Simulator::SetExternalWrench(int body, const Eigen::Vector3d& force,
+                                  const Eigen::Vector3d& torque) {
+  if (body < 0 || static_cast<std::size_t>(body) >= wrench_.size()) {
+    throw std::out_of_range("SetExternalWrench: body index " + IndexRange(body, wrench_.size()));
+  }
+  if (!force.allFinite() || !torque.allFinite()) {
+    throw std::invalid_argument("SetExternalWrench: force and torque must be finite [N, N m]");
+  }
+  Wrench& w = wrench_[static_cast<std::size_t>(body)];
+  w.force = force;
+  w.torque = torque;
+  // zero is "none": the body steps exactly as without a wrench
+  w.set = !(force.isZero(0.0) && torque.isZero(0.0));
+  any_wrench_ = std::any_of(wrench_.begin(), wrench_.end(), [](const Wrench& x) { return x.set; });
+}
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulator::ExternalWrench(int body) const {
+  if (body < 0 || static_cast<std::size_t>(body) >= wrench_.size()) {
+    throw std::out_of_range("ExternalWrench: body index " + IndexRange(body, wrench_.size()));
+  }
+  const Wrench& w = wrench_[static_cast<std::size_t>(body)];
+  return {w.force, w.torque};
+}
+
+}  // namespace nonsmooth_sim
