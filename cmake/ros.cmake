@@ -76,6 +76,7 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_scene_test)
   nonsmooth_sim_rostest(node_diagnostics_test)
   nonsmooth_sim_rostest(node_world_test)
+  nonsmooth_sim_rostest(node_fuzz_test)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

@@ -301,6 +301,9 @@ bool SimulationNode::OnApplyBodyWrench(ApplyBodyWrench::Request& req,
     w.start = std::max(req.start_time.toSec(), sim_->time());
     w.end = req.duration.toSec() < 0.0 ? std::numeric_limits<double>::infinity()
                                        : w.start + req.duration.toSec();
+    Check(wrenches_.size() < kMaxWrenches,
+          "already " + std::to_string(kMaxWrenches) +
+              " wrenches active (the most at once): clear some with ~clear_body_wrenches");
     if (req.duration.toSec() == 0.0) {
       res.success = true;
       res.status_message = "duration 0: nothing to apply";

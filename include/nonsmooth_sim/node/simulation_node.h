@@ -78,6 +78,8 @@ class SimulationNode {
   };
   /// |force| and |torque| of ~apply_body_wrench at most this [N], [N m].
   static constexpr double kMaxExternalForce = 1e6;
+  /// ~apply_body_wrench keeps at most this many wrenches at once (a bound on the work per step).
+  static constexpr std::size_t kMaxWrenches = 1000;
 
   /// Accumulated over a diagnostics period (and over the whole run).
   struct RunStatistics {
