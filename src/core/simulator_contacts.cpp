@@ -6,16 +6,11 @@
 #include <tuple>
 
 #include "nonsmooth_sim/core/contact/contact_frame.h"
+#include "nonsmooth_sim/core/contact/contact_key.h"
 #include "nonsmooth_sim/core/simulator.h"
 
 namespace nonsmooth_sim {
 namespace {
-
-// Key of a contact's memory: (first collider, second collider, feature) in 24 + 24 + 16 bits.
-std::uint64_t ContactKey(int first, int second, int feature) {
-  return (static_cast<std::uint64_t>(first) << 40) | (static_cast<std::uint64_t>(second) << 16) |
-         static_cast<std::uint64_t>(feature & 0xffff);
-}
 
 // The feature id of a pair's own memory (ContactKey with it: "the pair had a closed contact").
 constexpr int kPairFeature = 0xffff;

@@ -22,29 +22,22 @@
 #include <utility>
 #include <vector>
 
+#include "nonsmooth_sim/core/contact/contact_key.h"
 #include "nonsmooth_sim/core/simulator.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-// The layout of a contact memory's key (ContactKey in simulator_contacts.cpp): first collider,
-// second collider, feature in 24 + 24 + 16 bits; first < second.
-constexpr int kKeyFirstShift = 40;
-constexpr int kKeySecondShift = 16;
-constexpr std::uint64_t kKeyColliderMask = 0xffffff;
-constexpr std::uint64_t kKeyFeatureMask = 0xffff;
-
 // The key with both colliders mapped by `map` (old → new index, -1: removed); false if one of
 // them was removed.
 bool RekeyContact(std::uint64_t key, const std::vector<int>& map, std::uint64_t* out) {
-  const std::size_t first = static_cast<std::size_t>(key >> kKeyFirstShift);
-  const std::size_t second = static_cast<std::size_t>((key >> kKeySecondShift) & kKeyColliderMask);
+  const std::size_t first = static_cast<std::size_t>(ContactKeyFirst(key));
+  const std::size_t second = static_cast<std::size_t>(ContactKeySecond(key));
   if (first >= map.size() || second >= map.size()) return false;  // not a key of this scene
   const int new_first = map[first];
   const int new_second = map[second];
   if (new_first < 0 || new_second < 0) return false;
-  *out = (static_cast<std::uint64_t>(new_first) << kKeyFirstShift) |
-         (static_cast<std::uint64_t>(new_second) << kKeySecondShift) | (key & kKeyFeatureMask);
+  *out = ContactKey(new_first, new_second, ContactKeyFeature(key));
   return true;
 }
 
