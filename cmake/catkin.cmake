@@ -1,6 +1,6 @@
 # catkin first (catkin_lint: no target before find_package(catkin) and catkin_package()): the
 # messages and services, what a dependent package gets, and where binaries go
-# (build/devel/lib/nonsmooth_sim, the rosrun/roslaunch location). Included from CMakeLists.txt
+# (<build>/devel/lib/nonsmooth_sim, the rosrun/roslaunch location). Included from CMakeLists.txt
 # before any target when NONSMOOTH_SIM_WITH_ROS is ON. Debian's ROS lives in /usr (docs/building.md).
 
 # Gotcha: pyenv's python3 first on PATH has no catkin_pkg; use Debian's. A default only: another
@@ -16,7 +16,7 @@ find_package(catkin REQUIRED COMPONENTS
   diagnostic_msgs diagnostic_updater message_generation)
 
 # ---------------------------------------------------------------------------------------------
-# Messages and services (generated headers: build/devel/include/nonsmooth_sim/).
+# Messages and services (generated headers: <build>/devel/include/nonsmooth_sim/).
 add_message_files(DIRECTORY msg FILES
   BodyInfo.msg ContactInfo.msg ContactInfoArray.msg ModelState.msg SimulationState.msg)
 # the world services' types have the names, fields and field types of gazebo_msgs (ROS 1)

@@ -1,5 +1,5 @@
 # GoogleTest executables of one test folder: every <dir>/*_test.cpp is one executable (named
-# <prefix>_<file> with a PREFIX, else <file>) in build/test_bin, built by the `tests` target (not
+# <prefix>_<file> with a PREFIX, else <file>) in <build>/test_bin, built by the `tests` target (not
 # by `all`), linked to LIBRARIES, with NONSMOOTH_SIM_SOURCE_DIR defined; one ctest entry per TEST
 # ("<prefix>.<Suite>.<Test>" with a PREFIX). Included first from CMakeLists.txt.
 enable_testing()

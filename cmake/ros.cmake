@@ -10,8 +10,9 @@ add_library(nonsmooth_sim_ros STATIC
   src/node/node_parameters.cpp
   src/node/node_services.cpp
   src/node/simulation_node.cpp
-  src/node/world_services.cpp)
-# the message headers (build/devel/include) and catkin's come from include_directories() in
+  src/node/world_services.cpp
+  src/node/model_services.cpp)
+# the message headers (<build>/devel/include) and catkin's come from include_directories() in
 # cmake/catkin.cmake
 target_include_directories(nonsmooth_sim_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
 target_link_libraries(nonsmooth_sim_ros PUBLIC
@@ -76,6 +77,7 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_scene_test)
   nonsmooth_sim_rostest(node_diagnostics_test)
   nonsmooth_sim_rostest(node_world_test)
+  nonsmooth_sim_rostest(node_spawn_test)
   nonsmooth_sim_rostest(node_fuzz_test)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace nonsmooth_sim {
 namespace {
@@ -131,6 +132,43 @@ void ValidateLaw(const std::string& where, const ContactLaw& law) {
   if (FrictionSetName(law.friction_set) == "unknown") {
     throw std::invalid_argument(where + ".friction_set is not one of " + FrictionSetNameList());
   }
+}
+
+int AppendScene(const Scene& model, Scene* world) {
+  const int first = static_cast<int>(world->bodies.size());
+  world->bodies.insert(world->bodies.end(), model.bodies.begin(), model.bodies.end());
+  world->initial_state.insert(world->initial_state.end(), model.initial_state.begin(),
+                              model.initial_state.end());
+  for (const Collider& collider : model.colliders) {
+    world->colliders.push_back(collider);
+    if (collider.body != kWorld) world->colliders.back().body += first;
+  }
+  return first;
+}
+
+void RemoveFromScene(const std::vector<char>& remove_body, const std::vector<char>& remove_collider,
+                     Scene* world, std::vector<int>* body_map, std::vector<int>* collider_map) {
+  Scene rest;
+  rest.gravity = world->gravity;
+  body_map->assign(world->bodies.size(), -1);
+  for (std::size_t b = 0; b < world->bodies.size(); ++b) {
+    if (remove_body[b]) continue;
+    (*body_map)[b] = static_cast<int>(rest.bodies.size());
+    rest.bodies.push_back(std::move(world->bodies[b]));
+    if (b < world->initial_state.size()) rest.initial_state.push_back(world->initial_state[b]);
+  }
+  collider_map->assign(world->colliders.size(), -1);
+  for (std::size_t i = 0; i < world->colliders.size(); ++i) {
+    Collider& c = world->colliders[i];
+    if (c.body == kWorld ? remove_collider[i] != 0
+                         : remove_body[static_cast<std::size_t>(c.body)] != 0) {
+      continue;
+    }
+    (*collider_map)[i] = static_cast<int>(rest.colliders.size());
+    if (c.body != kWorld) c.body = (*body_map)[static_cast<std::size_t>(c.body)];
+    rest.colliders.push_back(std::move(c));
+  }
+  *world = std::move(rest);
 }
 
 void ValidateScene(const Scene& scene) {

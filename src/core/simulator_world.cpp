@@ -98,12 +98,9 @@ int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state
   }
   // the merged scene: appended, validated like the constructor's before anything changes
   Scene merged = scene_;
-  merged.bodies.insert(merged.bodies.end(), model.bodies.begin(), model.bodies.end());
-  merged.initial_state.insert(merged.initial_state.end(), state.begin(), state.end());
-  for (const Collider& collider : model.colliders) {
-    merged.colliders.push_back(collider);
-    if (collider.body != kWorld) merged.colliders.back().body += first;
-  }
+  Scene appended = model;
+  appended.initial_state = state;
+  AppendScene(appended, &merged);
   ValidateWorld(merged);
   std::vector<BodyState> merged_state = state_;
   for (const BodyState& s : state) {
@@ -153,28 +150,16 @@ void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<i
   }
 
   // old → new indices, increasing (-1: removed)
-  std::vector<int> body_map(body_count, -1);
-  Scene rest;
-  rest.gravity = scene_.gravity;
+  std::vector<int> body_map;
+  std::vector<int> collider_map;
+  Scene rest = scene_;
+  RemoveFromScene(remove_body, remove_collider, &rest, &body_map, &collider_map);
   std::vector<BodyState> rest_state;
   std::vector<Wrench> rest_wrench;
   for (std::size_t b = 0; b < body_count; ++b) {
     if (remove_body[b]) continue;
-    body_map[b] = static_cast<int>(rest.bodies.size());
-    rest.bodies.push_back(scene_.bodies[b]);
-    rest.initial_state.push_back(scene_.initial_state[b]);
     rest_state.push_back(state_[b]);
     rest_wrench.push_back(wrench_[b]);
-  }
-  std::vector<int> collider_map(collider_count, -1);
-  for (std::size_t i = 0; i < collider_count; ++i) {
-    const Collider& c = scene_.colliders[i];
-    if (remove_collider[i] || (c.body != kWorld && remove_body[static_cast<std::size_t>(c.body)])) {
-      continue;
-    }
-    collider_map[i] = static_cast<int>(rest.colliders.size());
-    rest.colliders.push_back(c);
-    rest.colliders.back().body = MapBody(c.body, body_map);
   }
   // warm starts and tangent frames by (pair, feature), re-keyed
   std::unordered_map<std::uint64_t, ContactMemory> rest_memory;
@@ -216,6 +201,50 @@ void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<i
   contacts_ = std::move(rest_contacts);
   BuildCaches();
   closed_count_ = 0;  // closed_ pointed into the old memory; rewritten by the next step
+}
+
+void Simulator::SetBodyStates(const std::vector<int>& bodies,
+                              const std::vector<BodyState>& states) {
+  if (bodies.size() != states.size()) {
+    throw std::invalid_argument("SetBodyStates: " + std::to_string(states.size()) +
+                                " states for " + std::to_string(bodies.size()) + " bodies");
+  }
+  std::vector<char> moved(scene_.bodies.size(), 0);
+  std::vector<BodyState> next = state_;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const int b = bodies[i];
+    if (b < 0 || static_cast<std::size_t>(b) >= scene_.bodies.size()) {
+      throw std::out_of_range("SetBodyStates: body index " + IndexRange(b, scene_.bodies.size()));
+    }
+    if (moved[static_cast<std::size_t>(b)]) {
+      throw std::invalid_argument("SetBodyStates: body index " + std::to_string(b) +
+                                  " given twice");
+    }
+    moved[static_cast<std::size_t>(b)] = 1;
+    next[static_cast<std::size_t>(b)] = states[i];
+  }
+  ValidateState(scene_, next);
+  for (int b : bodies) next[static_cast<std::size_t>(b)].orientation.normalize();
+  // forget the contacts of the moved bodies only
+  auto involved = [&](int collider) {
+    const int body = scene_.colliders[static_cast<std::size_t>(collider)].body;
+    return body != kWorld && moved[static_cast<std::size_t>(body)] != 0;
+  };
+  for (auto it = memory_.begin(); it != memory_.end();) {
+    if (involved(ContactKeyFirst(it->first)) || involved(ContactKeySecond(it->first))) {
+      it = memory_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
+                                 [&](const ContactState& c) {
+                                   return involved(c.collider_a) || involved(c.collider_b);
+                                 }),
+                  contacts_.end());
+  state_ = std::move(next);
+  diverged_ = false;
+  closed_count_ = 0;  // closed_ may point into the erased memory; rewritten by the next step
 }
 
 void Simulator::SetExternalWrench(int body, const Eigen::Vector3d& force,

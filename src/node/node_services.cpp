@@ -154,15 +154,32 @@ bool SimulationNode::OnResetState(ResetState::Request& req, ResetState::Response
   const auto lock = LockForService();
   res.sim_time = sim_->time();
   try {
-    const int body = req.body.empty() ? initial_body_ : BodyIndex(req.body);
-    if (body < 0) throw std::invalid_argument("body \"" + req.body + "\" is not a free body");
+    // a body of the start-up model (urdf_); spawned models: ~set_model_state
+    int body = req.body.empty() ? initial_body_ : -1;
+    for (std::size_t b = 0; b < urdf_.scene.bodies.size() && body < 0; ++b) {
+      if (urdf_.scene.bodies[b].name == req.body) body = static_cast<int>(b);
+    }
+    if (body < 0) {
+      throw std::invalid_argument("body \"" + req.body +
+                                  "\" is not a free body of the start-up model (a spawned "
+                                  "model's: ~set_model_state)");
+    }
+    const std::vector<int>* where = nullptr;  // per urdf_ body its index in the world
+    for (const Model& model : models_) {
+      if (model.description.empty()) where = &model.bodies;
+    }
+    if (where == nullptr) {
+      throw std::invalid_argument("the start-up model was deleted (~delete_model)");
+    }
     const InitialConditions request = FromRequest(req);
     ValidateInitialConditions(request);
     std::vector<BodyState> state = configured_scene_.initial_state;
     if (body == initial_body_) {
-      state = InitialState(urdf_, body, Merge(parameters_.initial, request));
+      const std::vector<BodyState> start =
+          InitialState(urdf_, body, Merge(parameters_.initial, request));
+      for (std::size_t b = 0; b < start.size(); ++b) state[(*where)[b]] = start[b];
     } else {
-      state[body] = InitialState(urdf_, body, request)[body];
+      state[(*where)[body]] = InitialState(urdf_, body, request)[body];
     }
     sim_->SetState(state);  // validates; clears the warm start
   } catch (const std::exception& e) {
@@ -187,8 +204,13 @@ bool SimulationNode::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empt
   const auto lock = LockForService();
   // a fresh simulator with the configured laws and solver; the time goes on (/clock monotone)
   const double time = sim_->time();
-  sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
-  sim_->SetTime(time);
+  if (configured_scene_.bodies.empty()) {
+    // every model deleted (a simulator needs a body): only the state of the static world is left
+    sim_->SetState(configured_scene_.initial_state);
+  } else {
+    sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+    sim_->SetTime(time);
+  }
   last_step_ = StepStatistics();
   total_ = RunStatistics();
   UpdatePeriods();

@@ -109,6 +109,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       p.advertiseService("set_model_state", &SimulationNode::OnSetModelState, this),
       p.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this),
       p.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this),
+      p.advertiseService("spawn_urdf_model", &SimulationNode::OnSpawnUrdfModel, this),
+      p.advertiseService("delete_model", &SimulationNode::OnDeleteModel, this),
   };
 
   updater_.setHardwareID("nonsmooth_sim");
@@ -502,7 +504,7 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
 // lookups
 
 int SimulationNode::BodyIndex(const std::string& name) const {
-  const auto& bodies = urdf_.scene.bodies;
+  const auto& bodies = sim_->scene().bodies;
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     if (bodies[b].name == name) return b;
   }

@@ -8,52 +8,9 @@
 
 #include "nonsmooth_sim/node/simulation_node.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
+#include "world_frames.h"
 
 namespace nonsmooth_sim::node {
-namespace {
-
-Eigen::Vector3d ToEigen(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
-Eigen::Vector3d ToEigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-
-void Check(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument(message);
-}
-
-Eigen::Vector3d FiniteVector(const char* field, const Eigen::Vector3d& v, double bound) {
-  Check(v.allFinite(), std::string(field) + ": must be finite");
-  Check(v.norm() <= bound, std::string(field) + ": |" + field + "| = " + std::to_string(v.norm()) +
-                               " is above " + std::to_string(bound));
-  return v;
-}
-
-// A pose's quaternion, normalised; a zero or non-finite one is an error.
-Eigen::Quaterniond Orientation(const char* field, const geometry_msgs::Quaternion& q) {
-  const Eigen::Quaterniond p(q.w, q.x, q.y, q.z);
-  Check(p.coeffs().allFinite(), std::string(field) + ": must be finite");
-  Check(p.norm() > 1e-6, std::string(field) + ": |q| = " + std::to_string(p.norm()) +
-                             " cannot be normalised (x y z w all about 0)");
-  return p.normalized();
-}
-
-// A rigid transform (rotation, translation).
-struct Frame {
-  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // of the origin, world
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // world
-};
-
-// The link frame of a body in the world, with its velocity.
-Frame LinkFrame(const RigidBody& body, const BodyState& s) {
-  Frame f;
-  f.rotation = s.orientation;
-  f.origin = s.position - s.orientation * body.com_in_link;
-  f.angular_velocity = s.orientation * s.angular_velocity;
-  f.linear_velocity = s.linear_velocity + f.angular_velocity.cross(f.origin - s.position);
-  return f;
-}
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // names
@@ -72,25 +29,39 @@ std::string SimulationNode::ModelNames() const {
 }
 
 int SimulationNode::ScopedBodyIndex(const std::string& name) const {
-  // "<model>::<link>" or "<link>"
+  // "<model>::<link>", or the body's own name ("<link>" of the start-up model, "<model>/<link>" of
+  // a spawned one)
   const std::size_t scope = name.find("::");
   if (scope == std::string::npos) return BodyIndex(name);
   const int m = ModelIndex(name.substr(0, scope));
   if (m < 0) return -1;
-  const int b = BodyIndex(name.substr(scope + 2));
-  for (int body : models_[static_cast<std::size_t>(m)].bodies) {
-    if (body == b) return b;
+  const Model& model = models_[static_cast<std::size_t>(m)];
+  const std::string body_name = model.prefix + name.substr(scope + 2);
+  for (int body : model.bodies) {
+    if (sim_->scene().bodies[static_cast<std::size_t>(body)].name == body_name) return body;
   }
   return -1;
 }
 
 std::string SimulationNode::ScopedBodyName(int body) const {
+  const std::string& name = sim_->scene().bodies[static_cast<std::size_t>(body)].name;
   for (const Model& m : models_) {
     for (int b : m.bodies) {
-      if (b == body) return m.name + "::" + sim_->scene().bodies[static_cast<std::size_t>(b)].name;
+      if (b == body) return m.name + "::" + name.substr(m.prefix.size());
     }
   }
-  return sim_->scene().bodies[static_cast<std::size_t>(body)].name;
+  return name;
+}
+
+int SimulationNode::ReferenceBody(const std::string& name, const char* field) const {
+  if (name.empty() || name == "world") return -1;
+  const int body = ScopedBodyIndex(name);
+  if (body < 0) {
+    throw std::invalid_argument(std::string(field) + " \"" + name +
+                                "\" is neither \"world\" nor a body (\"<model>::<link>\" or "
+                                "\"<link>\")");
+  }
+  return body;
 }
 
 void SimulationNode::BuildModels() {
@@ -140,8 +111,9 @@ bool SimulationNode::OnGetModelProperties(GetModelProperties::Request& req,
   std::string sets;
   for (int c : model.colliders) {
     const Collider& collider = scene.colliders[static_cast<std::size_t>(c)];
-    res.geom_names.push_back(collider.name);
-    sets += (sets.empty() ? "" : ", ") + collider.name + ": " +
+    const std::string name = collider.name.substr(model.prefix.size());
+    res.geom_names.push_back(name);
+    sets += (sets.empty() ? "" : ", ") + name + ": " +
             std::string(FrictionSetName(collider.law.friction_set));
   }
   res.is_static = model.bodies.empty();
@@ -167,16 +139,12 @@ bool SimulationNode::OnGetModelState(GetModelState::Request& req, GetModelState:
     return true;
   }
   Frame reference;  // the world
-  if (!req.relative_entity_name.empty() && req.relative_entity_name != "world") {
-    const int r = ScopedBodyIndex(req.relative_entity_name);
-    if (r < 0) {
-      res.success = false;
-      res.status_message = "relative_entity_name \"" + req.relative_entity_name +
-                           "\" is neither \"world\" nor a body (\"<model>::<link>\" or \"<link>\")";
-      return true;
-    }
-    reference = LinkFrame(sim_->scene().bodies[static_cast<std::size_t>(r)],
-                          sim_->state()[static_cast<std::size_t>(r)]);
+  try {
+    reference = BodyFrame(*sim_, ReferenceBody(req.relative_entity_name, "relative_entity_name"));
+  } catch (const std::invalid_argument& e) {
+    res.success = false;
+    res.status_message = e.what();
+    return true;
   }
   const int b = model.bodies.front();
   const Frame f = LinkFrame(sim_->scene().bodies[static_cast<std::size_t>(b)],
@@ -213,14 +181,8 @@ bool SimulationNode::OnSetModelState(SetModelState::Request& req, SetModelState:
     Check(m >= 0, "no model \"" + request.model_name + "\"; the models are: " + ModelNames());
     const Model& model = models_[static_cast<std::size_t>(m)];
     Check(!model.bodies.empty(), "model \"" + model.name + "\" has no free body");
-    Frame reference;
-    if (!request.reference_frame.empty() && request.reference_frame != "world") {
-      const int r = ScopedBodyIndex(request.reference_frame);
-      Check(r >= 0, "reference_frame \"" + request.reference_frame +
-                        "\" is neither \"world\" nor a body (\"<model>::<link>\" or \"<link>\")");
-      reference = LinkFrame(sim_->scene().bodies[static_cast<std::size_t>(r)],
-                            sim_->state()[static_cast<std::size_t>(r)]);
-    }
+    const Frame reference =
+        BodyFrame(*sim_, ReferenceBody(request.reference_frame, "reference_frame"));
     // the requested link frame of the canonical body, in the world
     const Eigen::Vector3d position = FiniteVector(
         "pose.position", ToEigen(request.pose.position), scene_io::kMaxInitialCoordinate);
@@ -240,9 +202,9 @@ bool SimulationNode::OnSetModelState(SetModelState::Request& req, SetModelState:
     const Frame now = LinkFrame(sim_->scene().bodies[static_cast<std::size_t>(canonical)],
                                 sim_->state()[static_cast<std::size_t>(canonical)]);
     const Eigen::Quaterniond turn = target.rotation * now.rotation.conjugate();
-    std::vector<BodyState> state = sim_->state();
+    std::vector<BodyState> states;
     for (int b : model.bodies) {
-      BodyState& s = state[static_cast<std::size_t>(b)];
+      BodyState s = sim_->state()[static_cast<std::size_t>(b)];
       s.position = target.origin + turn * (s.position - now.origin);
       s.orientation = (turn * s.orientation).normalized();
       s.linear_velocity =
@@ -253,8 +215,10 @@ bool SimulationNode::OnSetModelState(SetModelState::Request& req, SetModelState:
             "body " + ScopedBodyName(b) + " would leave the allowed range (|x| <= " +
                 std::to_string(scene_io::kMaxInitialCoordinate) + " m, |v| <= " +
                 std::to_string(scene_io::kMaxInitialSpeed) + " m/s)");
+      states.push_back(s);
     }
-    sim_->SetState(state);  // validates; throws and changes nothing on bad input
+    // validates, throws and changes nothing on bad input; the other models keep their contacts
+    sim_->SetBodyStates(model.bodies, states);
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string(e.what()) + "; nothing changed";
@@ -274,14 +238,8 @@ bool SimulationNode::OnApplyBodyWrench(ApplyBodyWrench::Request& req,
     const int b = ScopedBodyIndex(req.body_name);
     Check(b >= 0, "body_name \"" + req.body_name +
                       "\" is not a body (\"<model>::<link>\" or \"<link>\" of a free link)");
-    Frame reference;
-    if (!req.reference_frame.empty() && req.reference_frame != "world") {
-      const int r = ScopedBodyIndex(req.reference_frame);
-      Check(r >= 0, "reference_frame \"" + req.reference_frame +
-                        "\" is neither \"world\" nor a body (\"<model>::<link>\" or \"<link>\")");
-      reference = LinkFrame(sim_->scene().bodies[static_cast<std::size_t>(r)],
-                            sim_->state()[static_cast<std::size_t>(r)]);
-    }
+    const Frame reference =
+        BodyFrame(*sim_, ReferenceBody(req.reference_frame, "reference_frame"));
     const Eigen::Vector3d force = FiniteVector("wrench.force", ToEigen(req.wrench.force),
                                                kMaxExternalForce);
     const Eigen::Vector3d torque = FiniteVector("wrench.torque", ToEigen(req.wrench.torque),

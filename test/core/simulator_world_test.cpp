@@ -334,6 +334,57 @@ TEST_P(WorldLockstep, AddedTopStepsLikeAFreshSimulatorAndTheOtherAsIfAlone) {
   EXPECT_TRUE(w1.InContact(3) || w1.InContact(4));  // B on the ground
 }
 
+TEST_P(WorldLockstep, SettingOneTopsStateLeavesTheOtherAsIfAlone) {
+  // SetBodyStates forgets the moved body's contacts only: the other top keeps its warm starts
+  // and steps bit for bit as in a world without the first; SetState (every contact forgotten)
+  // is the control that the comparison can tell
+  const WorldCase& c = GetParam();
+  const SimulatorOptions options = OptionsOf(c);
+  const Model a = TopA(c.set), b = TopB(c.set);
+  Simulator w1(World({&a, &b}, /*ground_first=*/false), options);
+  Simulator w0(World({&b}, false), options);
+  Simulator control(World({&a, &b}, false), options);
+  for (int k = 0; k < 1500; ++k) {
+    w1.Step();
+    w0.Step();
+    control.Step();
+  }
+  BodyState moved = a.state;
+  moved.position.x() -= 0.25;
+  moved.orientation.coeffs() *= 2.0;  // normalised by the simulator
+  const std::vector<BodyState> before = w1.state();
+  EXPECT_THROW(w1.SetBodyStates({0, 0}, {moved, moved}), std::invalid_argument);
+  EXPECT_THROW(w1.SetBodyStates({2}, {moved}), std::out_of_range);
+  EXPECT_THROW(w1.SetBodyStates({0}, {}), std::invalid_argument);
+  BodyState bad = moved;
+  bad.linear_velocity.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(w1.SetBodyStates({0}, {bad}), std::invalid_argument);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(StateDifference(w1.state()[i], before[i]), "");
+
+  w1.SetBodyStates({0}, {moved});
+  std::vector<BodyState> all = control.state();
+  all[0] = moved;
+  control.SetState(all);
+  BodyState normalized = moved;
+  normalized.orientation.normalize();
+  EXPECT_EQ(StateDifference(w1.state()[0], normalized), "");
+  EXPECT_EQ(StateDifference(w1.state()[1], w0.state()[0]), "");
+  ASSERT_FALSE(w1.contacts().empty());  // B's
+  for (const ContactState& contact : w1.contacts()) {  // A's are gone
+    EXPECT_NE(contact.body_a, 0);
+    EXPECT_NE(contact.body_b, 0);
+  }
+  bool control_differs = false;
+  for (int k = 0; k < 3000; ++k) {
+    w1.Step();
+    w0.Step();
+    control.Step();
+    ASSERT_EQ(StateDifference(w1.state()[1], w0.state()[0]), "") << "B, step " << k;
+    control_differs = control_differs || StateDifference(control.state()[1], w0.state()[0]) != "";
+  }
+  EXPECT_TRUE(control_differs);
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, WorldLockstep, ::testing::ValuesIn(kWorldCases),
                          [](const ::testing::TestParamInfo<WorldCase>& info) {
                            return std::string(info.param.name);

@@ -39,6 +39,11 @@ class Recorder {
       messages_.push_back(*m);
     });
   }
+  // Unsubscribes before the members go: a spinner thread may be inside the callback, and
+  // shutdown() waits for it (the members would otherwise be destroyed under it).
+  ~Recorder() { sub_.shutdown(); }
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
   std::vector<M> Messages() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return messages_;

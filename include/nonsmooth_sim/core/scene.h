@@ -71,6 +71,17 @@ ContactLaw CombineLaws(const Collider& a, const Collider& b);
 /// Index of the collider named `name`, or -1.
 int FindCollider(const Scene& scene, const std::string& name);
 
+/// Appends `model` to `world`: its bodies with their initial_state, its colliders (indices of its
+/// bodies shifted to where they land). Returns the index of its first body. Checks nothing
+/// (ValidateScene does); Simulator::AddBodies is this on the simulator's scene.
+int AppendScene(const Scene& model, Scene* world);
+/// Removes from `world` the bodies b with remove_body[b] (and the colliders on them) and the
+/// static colliders i with remove_collider[i], keeping the order of the rest. body_map and
+/// collider_map (old → new index, -1: removed) are increasing over what remains.
+/// Simulator::RemoveBodies is this on the simulator's scene.
+void RemoveFromScene(const std::vector<char>& remove_body, const std::vector<char>& remove_collider,
+                     Scene* world, std::vector<int>* body_map, std::vector<int>* collider_map);
+
 /// Throws std::invalid_argument naming the element and the reason (non-positive mass, inertia not
 /// symmetric positive definite, a bad shape, a plane on a body, μ < 0, R̄ < 0, ε ∉ [0, 1], NaN
 /// anywhere, a collider on a missing body, two colliders with one name, initial_state of the wrong

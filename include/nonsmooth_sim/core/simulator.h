@@ -236,6 +236,11 @@ class Simulator {
   /// report and diverged(). Throws std::invalid_argument and leaves everything unchanged on bad
   /// input.
   void SetState(const std::vector<BodyState>& state);
+  /// Replaces the states of the bodies `bodies` (no repeats) by `states` (one each; validated,
+  /// quaternions normalised) and forgets only their contacts (warm starts, tangent frames,
+  /// report): every other body steps on exactly as if nothing had been set. Clears diverged().
+  /// Throws std::out_of_range or std::invalid_argument and changes nothing on bad input.
+  void SetBodyStates(const std::vector<int>& bodies, const std::vector<BodyState>& states);
   void SetTime(double time);
   /// Validated like the constructor; throws and changes nothing on bad input.
   void SetOptions(const SimulatorOptions& options);

@@ -24,6 +24,7 @@
 
 #include "nonsmooth_sim/ApplyBodyWrench.h"
 #include "nonsmooth_sim/BodyRequest.h"
+#include "nonsmooth_sim/DeleteModel.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
 #include "nonsmooth_sim/GetModelProperties.h"
 #include "nonsmooth_sim/GetModelState.h"
@@ -34,6 +35,7 @@
 #include "nonsmooth_sim/ResetState.h"
 #include "nonsmooth_sim/SetFrictionSet.h"
 #include "nonsmooth_sim/SetSolverProperties.h"
+#include "nonsmooth_sim/SpawnModel.h"
 #include "nonsmooth_sim/StepSimulation.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
@@ -64,9 +66,16 @@ class SimulationNode {
   /// A model of the world (get_world_properties): the bodies and colliders of one URDF.
   struct Model {
     std::string name;
+    /// of its body and collider names in the core scene (and its TF frames): "" for the start-up
+    /// model, "<name>/" for a spawned one
+    std::string prefix;
     std::vector<int> bodies;     ///< free bodies; the first is the canonical one
     std::vector<int> colliders;  ///< its collisions (on its bodies and its static links)
+    std::string description;  ///< the parameter holding its URDF ("" for the start-up model)
   };
+  /// ~spawn_urdf_model refuses a model that would make the world larger than this many bodies
+  /// (a bound on the work per step).
+  static constexpr std::size_t kMaxWorldBodies = 4096;
   /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
   struct ExternalWrench {
     int body = 0;
@@ -140,11 +149,20 @@ class SimulationNode {
   bool OnSetModelState(SetModelState::Request& req, SetModelState::Response& res);
   bool OnApplyBodyWrench(ApplyBodyWrench::Request& req, ApplyBodyWrench::Response& res);
   bool OnClearBodyWrenches(BodyRequest::Request& req, BodyRequest::Response& res);
+  // --- spawn and delete (model_services.cpp)
+  bool OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Response& res);
+  bool OnDeleteModel(DeleteModel::Request& req, DeleteModel::Response& res);
+  /// After bodies or colliders were added or removed: the contact frames and wrench topics of the
+  /// world, the markers cleared (mutex held).
+  void WorldChanged();
   void BuildModels();
   int ModelIndex(const std::string& name) const;       ///< -1 if unknown
   std::string ModelNames() const;                      ///< "a, b"
   int ScopedBodyIndex(const std::string& name) const;  ///< "<model>::<link>" or "<link>"; -1
   std::string ScopedBodyName(int body) const;          ///< "<model>::<link>"
+  /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
+  /// `field` for anything else that is not a body.
+  int ReferenceBody(const std::string& name, const char* field) const;
   /// Sets the core's external wrenches for the next step from wrenches_ (integrator).
   void ApplyWrenches();
 
@@ -152,14 +170,17 @@ class SimulationNode {
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  int BodyIndex(const std::string& name) const;    ///< -1 if unknown
+  int BodyIndex(const std::string& name) const;    ///< in the world, by its name; -1 if unknown
   std::string FrictionSetSummary() const;
 
   const NodeParameters parameters_;
-  const UrdfScene urdf_;
-  const int initial_body_;
-  Scene configured_scene_;  ///< the URDF scene with the configured start (reset_simulation)
-  const FrameNames frames_;
+  const UrdfScene urdf_;   ///< the start-up model
+  const int initial_body_;  ///< of ~reset, an index into urdf_
+  /// the world with the configured start (reset_simulation, reset_world): the start-up URDF with
+  /// its configured start, and each spawned model at its spawn pose; kept in step with sim_'s
+  /// bodies and colliders (mutex held)
+  Scene configured_scene_;
+  FrameNames frames_;  ///< of the current world (WorldChanged)
 
   ros::NodeHandle nh_, private_nh_;
   ros::Publisher clock_pub_, tf_pub_, contacts_pub_, state_pub_, markers_pub_;
