@@ -86,6 +86,12 @@ if(CATKIN_ENABLE_TESTING)
             --build-dir ${CMAKE_BINARY_DIR})
   set_tests_properties(node_bag_record_test PROPERTIES
     ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)
+  # A bag of a run with a spawn (scripts/spawn_tops) and a delete: the deleted top's TF stops.
+  add_test(NAME node_bag_spawn_test
+    COMMAND ${CATKIN_ENV} /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/node/bag_spawn_test.py
+            --build-dir ${CMAKE_BINARY_DIR})
+  set_tests_properties(node_bag_spawn_test PROPERTIES
+    ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)
 endif()
 
 # The install space and the devel space, used the ROS ways (rosrun, roslaunch), and the launch
