@@ -447,6 +447,9 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     snapshot_.sim_time = sim_->time();
     snapshot_.paused = paused_;
     snapshot_.closed_contacts = last_step_.closed_contacts;
+    snapshot_.islands = last_step_.islands;
+    snapshot_.bodies = sim_->scene().bodies.size();
+    snapshot_.models = models_.size();
     snapshot_.friction_sets = FrictionSetSummary();
     snapshot_.solver = std::string(SolverTypeName(sim_->options().solver.type));
     snapshot_.time_step = sim_->options().time_step;
@@ -497,6 +500,9 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("max dt*|omega| (explicit gyroscopic error ~ its square)", p.max_dt_omega);
   status.add("friction set", s.friction_sets);
   status.add("closed contacts", s.closed_contacts);
+  status.add("contact islands (problems solved in the last step)", s.islands);
+  status.add("models", s.models);
+  status.add("bodies", s.bodies);
   status.add("faults (failed steps) in total", s.faults);
 }
 

@@ -10,6 +10,7 @@
 // - bad spawns (a malformed URDF, an existing name, NaN in the pose, an unknown reference frame,
 //   a name that is not a graph name) and deleting an unknown model are refused with the reason
 //   and change nothing (~get_state bit-identical).
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <tf2_msgs/TFMessage.h>
 
@@ -109,6 +110,16 @@ void ExpectSameAsHeadless(const SimulationState& node, const Simulator& headless
   EXPECT_EQ(b.inclination, Inclination(s)) << when;
 }
 
+// The value of key `key` in a /diagnostics message of the node, "" without it.
+std::string DiagnosticValue(const diagnostic_msgs::DiagnosticArray& m, const std::string& key) {
+  for (const auto& status : m.status) {
+    for (const auto& kv : status.values) {
+      if (kv.key == key) return kv.value;
+    }
+  }
+  return "";
+}
+
 // Child frames of the /tf messages in `messages`.
 std::set<std::string> ChildFrames(const std::vector<tf2_msgs::TFMessage>& messages) {
   std::set<std::string> frames;
@@ -120,6 +131,7 @@ std::set<std::string> ChildFrames(const std::vector<tf2_msgs::TFMessage>& messag
 
 TEST_F(Spawn, ASecondTopInvertsAndItsDeletionLeavesTheFirstExactlyAsAlone) {
   Recorder<tf2_msgs::TFMessage> tf(nh_, "/tf", 1000000);
+  Recorder<diagnostic_msgs::DiagnosticArray> diagnostics(nh_, "/diagnostics");
   Simulator headless = HeadlessTop(nh_);
   const std::string xml = ReadFile(kTippeTopUrdf);
   ASSERT_FALSE(xml.empty());
@@ -178,6 +190,13 @@ TEST_F(Spawn, ASecondTopInvertsAndItsDeletionLeavesTheFirstExactlyAsAlone) {
   const std::set<std::string> with = ChildFrames(tf.Messages());
   EXPECT_EQ(with.count("tippe_top"), 1u);
   EXPECT_EQ(with.count("top2/tippe_top"), 1u);
+  // /diagnostics (1 Hz of wall time) counts both: each top on the ground is its own island
+  EXPECT_TRUE(diagnostics.WaitForMessage(
+      [](const diagnostic_msgs::DiagnosticArray& m) {
+        return DiagnosticValue(m, "models") == "2" && DiagnosticValue(m, "bodies") == "2" &&
+               DiagnosticValue(m, "contact islands (problems solved in the last step)") == "2";
+      },
+      20.0));
 
   DeleteModel remove;
   remove.request.model_name = "top2";

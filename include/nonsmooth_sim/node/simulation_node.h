@@ -235,6 +235,9 @@ class SimulationNode {
     double running_wall = 0.0;      ///< [s] the integrator ran (unpaused) in the period
     bool paused = false;
     int closed_contacts = 0;
+    int islands = 0;  ///< contact problems of the last step
+    std::size_t bodies = 0;
+    std::size_t models = 0;
     std::string friction_sets;
     std::string solver;
     double time_step = 0.0;
