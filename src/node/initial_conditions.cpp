@@ -80,8 +80,12 @@ void ValidateInitialConditions(const InitialConditions& initial) {
   }
   if (initial.orientation) {
     RequireFinite("orientation", initial.orientation->coeffs().allFinite());
-    if (initial.orientation->coeffs().squaredNorm() == 0.0) {
-      throw std::invalid_argument("orientation must be a non-zero quaternion");
+    // |q|² overflows for components near 1e154 and underflows near 1e-162: either way it
+    // cannot be normalised
+    const double norm2 = initial.orientation->coeffs().squaredNorm();
+    if (norm2 == 0.0 || !std::isfinite(norm2)) {
+      throw std::invalid_argument(
+          "orientation must be a quaternion that can be normalised (non-zero, |q|^2 finite)");
     }
   }
   if (initial.linear_velocity) {

@@ -9,6 +9,7 @@
 #include <geometry_msgs/Vector3.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -34,8 +35,10 @@ inline Eigen::Vector3d FiniteVector(const char* field, const Eigen::Vector3d& v,
 inline Eigen::Quaterniond Orientation(const char* field, const geometry_msgs::Quaternion& q) {
   const Eigen::Quaterniond p(q.w, q.x, q.y, q.z);
   Check(p.coeffs().allFinite(), std::string(field) + ": must be finite");
-  Check(p.norm() > 1e-6, std::string(field) + ": |q| = " + std::to_string(p.norm()) +
-                             " cannot be normalised (x y z w all about 0)");
+  const double norm = p.norm();
+  Check(norm > 1e-6 && std::isfinite(norm),
+        std::string(field) + ": |q| = " + std::to_string(norm) +
+            " cannot be normalised (x y z w all about 0, or too large)");
   return p.normalized();
 }
 

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -122,6 +123,12 @@ BodyInitialState ParseBody(const YAML::Node& node, const std::string& path, int 
       if (!(q.coeffs().squaredNorm() > 0.0)) {
         Fail(key_path, Line(entry.second),
              "the zero quaternion is not a rotation; expected " + std::string(key->meaning));
+      }
+      // finite components whose |q|² overflows (1e200) would normalise to the zero quaternion
+      if (!std::isfinite(q.coeffs().squaredNorm())) {
+        Fail(key_path, Line(entry.second),
+             "|q| is too large to normalise (|q|^2 overflows); expected a unit quaternion, " +
+                 std::string(key->meaning));
       }
       body.orientation = q.normalized();
     } else if (key == &kKeys[2]) {

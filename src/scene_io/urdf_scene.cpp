@@ -660,6 +660,7 @@ UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& opt
   } catch (const std::invalid_argument& e) {
     throw UrdfError(std::string("urdf: ") + e.what());
   }
+  for (std::string& warning : result.warnings) warning = OneLine(warning);  // names quoted
   return result;
 }
 

@@ -344,6 +344,53 @@ void ReadNonsmoothSim(const XMLElement* block, UrdfXml* result) {
   }
 }
 
+// XML 1.0 text is UTF-8 without control characters other than tab, newline and carriage return
+// (the Char production); TinyXML2 does not check it. Names with such bytes loaded before, could not
+// be written as YAML or read back (initial_state.h), and reached TF and topic names.
+void CheckXmlCharacters(const std::string& xml) {
+  int line = 1;
+  const auto fail = [&line](unsigned char byte, const char* reason) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    throw UrdfError("urdf: not well-formed XML: line " + std::to_string(line) + ": byte 0x" +
+                    kHex[byte >> 4] + kHex[byte & 0xf] + " " + reason);
+  };
+  const auto byte_at = [&xml](std::size_t i) { return static_cast<unsigned char>(xml[i]); };
+  for (std::size_t i = 0; i < xml.size();) {
+    const unsigned char c = byte_at(i);
+    if (c < 0x80) {
+      if (c == '\n') ++line;
+      if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+        fail(c, "is a control character, not allowed in XML");
+      }
+      ++i;
+      continue;
+    }
+    // the length of the sequence and the range of its second byte (no overlong forms, no
+    // surrogates, nothing above U+10FFFF: RFC 3629)
+    std::size_t length = 0;
+    unsigned char low = 0x80, high = 0xbf;
+    if (c >= 0xc2 && c <= 0xdf) {
+      length = 2;
+    } else if (c >= 0xe0 && c <= 0xef) {
+      length = 3;
+      if (c == 0xe0) low = 0xa0;
+      if (c == 0xed) high = 0x9f;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+      length = 4;
+      if (c == 0xf0) low = 0x90;
+      if (c == 0xf4) high = 0x8f;
+    } else {
+      fail(c, "is not valid UTF-8");
+    }
+    for (std::size_t k = 1; k < length; ++k) {
+      const unsigned char next = i + k < xml.size() ? byte_at(i + k) : 0;
+      const bool ok = k == 1 ? next >= low && next <= high : next >= 0x80 && next <= 0xbf;
+      if (!ok) fail(c, "starts a UTF-8 sequence that is not valid");
+    }
+    i += length;
+  }
+}
+
 }  // namespace
 
 bool ParseFiniteNumber(std::string_view text, double* value) {
@@ -354,6 +401,7 @@ bool ParseFiniteNumber(std::string_view text, double* value) {
 }
 
 UrdfXml ParseUrdfXml(const std::string& xml) {
+  CheckXmlCharacters(xml);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw UrdfError(std::string("urdf: not well-formed XML: ") + doc.ErrorStr());

@@ -139,6 +139,9 @@ TEST(InitialConditions, NonFiniteAndOutOfRangeValuesAreRejectedByName) {
   ic = {};
   ic.orientation = Eigen::Quaterniond(0.0, 0.0, 0.0, 0.0);
   EXPECT_NE(Message(ic).find("non-zero"), std::string::npos);
+  // finite components whose |q|² overflows: they normalise to (0, 0, 0, 0) or NaN
+  ic.orientation = Eigen::Quaterniond(1.0, 1e300, 0.0, 0.0);
+  EXPECT_NE(Message(ic).find("|q|^2 finite"), std::string::npos);
   ic = {};
   ic.position = Eigen::Vector3d(0.0, nan, 0.0);
   EXPECT_NE(Message(ic).find("position"), std::string::npos);

@@ -100,6 +100,9 @@ TEST_F(World, BadRequestsAreRefusedAndChangeNothing) {
   s.request.model_state.pose.orientation.w = 0.0;
   refused(s, "zero quaternion");
   s = set;
+  s.request.model_state.pose.orientation.x = 1e300;  // finite, but |q| overflows
+  refused(s, "overflowing quaternion");
+  s = set;
   s.request.model_state.twist.angular.z = std::numeric_limits<double>::infinity();
   refused(s, "infinite spin");
   s = set;

@@ -235,6 +235,30 @@ TEST(InitialStateYaml, WrongLengthsAndNumbersAreErrorsNamingTheKey) {
                  {"bodies.b.orientation (line 3)", "zero quaternion"});
 }
 
+// Found by scene_yaml_fuzz (test/fuzz, 2026-12-02): yaml-cpp's message about a bad character
+// quotes that character, and a name quoted in an error may hold one: control characters are
+// escaped, the error stays one line (LoadError checks it).
+TEST(InitialStateYaml, ControlCharactersOfTheInputKeepTheErrorOnOneLine) {
+  const Scene scene = TwoBodies();
+  // the fuzzer's input, as it was found
+  const std::string found("boe\0\n:isd bodies:\n\0 die: {n: [0, 0, 0, 0]}\n", 43);
+  ExpectContains(LoadError(scene, found), {"initial state (line 2", "not valid YAML"});
+  ExpectContains(LoadError(scene, "bodies:\n  \"a\\nb\": {position: [0, 0, 0]}\n"),
+                 {"bodies.a\\nb", "not a free body"});
+}
+
+// Found by scene_yaml_fuzz (test/fuzz, 2026-12-02): finite components whose |q|² overflows passed
+// the zero check and normalised to the zero quaternion, which the Simulator then rejected.
+TEST(InitialStateYaml, AQuaternionTooLargeToNormaliseIsAnError) {
+  const Scene scene = TwoBodies();
+  ExpectContains(LoadError(scene, "bodies: {b: {orientation: [1e300, 0, 0, 1]}}"),
+                 {"bodies.b.orientation", "too large to normalise"});
+  // large but normalisable: loads as the rotation it is
+  const auto state = InitialStateFromYaml(scene, "bodies: {b: {orientation: [0, 0, 1e150, 1e150]}}");
+  EXPECT_NEAR(state[0].orientation.z(), std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(state[0].orientation.w(), std::sqrt(0.5), 1e-15);
+}
+
 TEST(InitialStateYaml, ValuesBeyondTheBoundsAreErrorsNamingTheKeyAndTheBound) {
   // finite is not enough: a spin of 1e300 rad/s has an infinite kinetic energy (issue 11)
   const Scene scene = TwoBodies();

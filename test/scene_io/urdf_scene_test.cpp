@@ -15,6 +15,7 @@
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -551,6 +552,55 @@ TEST(UrdfLoader, AnisotropicFrictionAndUnknownGazeboReferencesAreReported) {
   EXPECT_TRUE(HasWarning(urdf, {"anisotropic"}));
   EXPECT_TRUE(HasWarning(urdf, {"gazebo reference=\"nowhere\"", "ignored"}));
   EXPECT_EQ(urdf.scene.colliders[0].law.mu, 0.5);
+}
+
+// Found by urdf_loader_fuzz (test/fuzz, 2026-12-02): a newline inside an attribute value was
+// quoted verbatim into the error, which then had two lines (the node prints one, and callers split
+// on lines). Control characters of the input are escaped in every error and warning now.
+TEST(UrdfLoader, ControlCharactersOfTheInputAreEscapedAndTheErrorStaysOneLine) {
+  // the fuzzer's input, reduced: xyz="0 0 0.0<newline>3" (LoadError checks: one line)
+  ExpectContains(LoadError(Robot(kUnitInertial +
+                                 "<collision name=\"ball\"><origin xyz=\"0 0 0.0\n3\"/>"
+                                 "<geometry><sphere radius=\"0.1\"/></geometry></collision>")),
+                 {"collision \"ball\" > origin", "xyz=\"0 0 0.0\\n3\"", "has 4 numbers"});
+  // a tab in a name that an error quotes (TinyXML2 turns a carriage return into a newline)
+  ExpectContains(LoadError(Robot(kUnitInertial + kBall,
+                                 "<nonsmooth_sim reference=\"no\tlink\r\"/>")),
+                 {"reference=\"no\\tlink\\n\"", "no link named \"no\\tlink\\n\""});
+  // and in a warning
+  const UrdfScene urdf =
+      SceneFromUrdf(Robot(kUnitInertial + kBall, "<gazebo reference=\"a\nb\"/>"));
+  EXPECT_TRUE(HasWarning(urdf, {"gazebo reference=\"a\\nb\"", "ignored"}));
+  for (const std::string& warning : urdf.warnings) {
+    EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
+  }
+  // the escapes themselves; printable ASCII and UTF-8 pass unchanged
+  EXPECT_EQ(OneLine(std::string("a\nb\rc\td\x01" "e\x7f" "f\0g \xc3\xa9", 16)),
+            "a\\nb\\rc\\td\\x01e\\x7ff\\x00g \xc3\xa9");
+}
+
+// Found by urdf_loader_fuzz (test/fuzz, 2026-12-02): a link named with bytes that are not UTF-8
+// ("tip\xe9\x03top") loaded, and its start written as YAML (InitialStateToYaml) did not read back
+// (yaml-cpp changes such bytes, the name no longer matched). XML text is UTF-8 without control
+// characters other than tab, newline and carriage return; the loader checks that now.
+TEST(UrdfLoader, TextThatIsNotXmlCharactersIsRejected) {
+  const auto named = [](const std::string& name) {
+    return "<robot name=\"r\"><link name=\"" + name + "\">" + kUnitInertial + kBall +
+           "</link></robot>";
+  };
+  ExpectContains(LoadError(named("tip\xe9\x03top")),
+                 {"not well-formed XML", "line 1", "byte 0xe9", "not valid"});
+  ExpectContains(LoadError(named("a\x03" "b")), {"line 1", "byte 0x03", "control character"});
+  ExpectContains(LoadError("<robot name=\"r\">\n<link name=\"b\xff\"/></robot>"),
+                 {"line 2", "byte 0xff", "not valid UTF-8"});
+  ExpectContains(LoadError(named("\xed\xa0\x80")), {"byte 0xed", "not valid"});  // a surrogate
+  ExpectContains(LoadError(named("\xc0\xaf")), {"byte 0xc0", "not valid UTF-8"});  // overlong
+  // UTF-8 names load, and their start survives the YAML round trip
+  const UrdfScene urdf = SceneFromUrdf(named("M\xc3\xb6ller_\xe2\x82\xac_\xf0\x9f\x8e\xb2"));
+  const std::vector<BodyState> back = InitialStateFromYaml(
+      urdf.scene, InitialStateToYaml(urdf.scene, urdf.scene.initial_state));
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].position, urdf.scene.initial_state[0].position);
 }
 
 // --- names ---------------------------------------------------------------------------------------

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/scene.h"
+#include "nonsmooth_sim/scene_io/one_line.h"
 
 namespace nonsmooth_sim::scene_io {
 
@@ -49,10 +50,11 @@ void CheckInitialLinearVelocity(const std::string& what, const Eigen::Vector3d& 
 void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d& velocity);
 
 /// A malformed initial state. what(): one line,
-/// "initial state: bodies.<link>.<key> (line n): <reason>; <what is allowed>".
+/// "initial state: bodies.<link>.<key> (line n): <reason>; <what is allowed>" (control characters
+/// of the quoted input escaped, one_line.h).
 class InitialStateError : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit InitialStateError(const std::string& what) : std::invalid_argument(OneLine(what)) {}
 };
 
 /// The start of one body as written (see the top of this file); each part optional.

@@ -79,6 +79,7 @@
 
 #include "nonsmooth_sim/core/scene.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/scene_io/one_line.h"
 
 namespace nonsmooth_sim::scene_io {
 
@@ -99,10 +100,11 @@ inline constexpr double kMaxGyrationRadius = 1e3;   ///< √(Iᵢ/m) [m]
 /// √(I_max/m) ≤ this × the body's extent (a thin ring of the body's size has √(I/m) = extent).
 inline constexpr double kGyrationSizeFactor = 100.0;
 
-/// A malformed or inconsistent URDF. what(): one line, "urdf: <element>: <reason>".
+/// A malformed or inconsistent URDF. what(): one line, "urdf: <element>: <reason>" (control
+/// characters of the quoted input escaped, one_line.h).
 class UrdfError : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit UrdfError(const std::string& what) : std::invalid_argument(OneLine(what)) {}
 };
 
 struct UrdfSceneOptions {
