@@ -29,8 +29,8 @@ std::string NameList(const std::array<Enum, N>& all, std::string_view (*to_name)
 
 constexpr std::array<SolverType, 3> kAllSolverTypes = {
     SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel};
-constexpr std::array<GyroscopicScheme, 2> kAllGyroscopicSchemes = {
-    GyroscopicScheme::kExplicit, GyroscopicScheme::kImplicitMidpoint};
+constexpr std::array<GyroscopicScheme, 3> kAllGyroscopicSchemes = {
+    GyroscopicScheme::kExplicit, GyroscopicScheme::kImplicitMidpoint, GyroscopicScheme::kAuto};
 
 }  // namespace
 
@@ -66,6 +66,7 @@ std::string_view GyroscopicSchemeName(GyroscopicScheme scheme) {
   switch (scheme) {
     case GyroscopicScheme::kExplicit: return "explicit";
     case GyroscopicScheme::kImplicitMidpoint: return "implicit_midpoint";
+    case GyroscopicScheme::kAuto: return "auto";
   }
   return "unknown";
 }

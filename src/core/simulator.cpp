@@ -15,7 +15,6 @@ constexpr double kMinTimeStep = 1e-7;  // [s]
 constexpr double kMaxTimeStep = 1e-2;  // [s]
 // The implicit-midpoint passes stop once ω_E changes by less than this relative amount even when
 // the solver tolerance is tighter: below it the change is round-off.
-constexpr double kGyroscopicRoundOff = 4.0 * std::numeric_limits<double>::epsilon();
 
 std::vector<BodyState> Normalized(std::vector<BodyState> state) {
   for (BodyState& s : state) s.orientation.normalize();
@@ -48,7 +47,7 @@ void ValidateSimulatorOptions(const SimulatorOptions& options) {
   ValidateSolverOptions(options.solver);
   if (GyroscopicSchemeName(options.gyroscopic) == "unknown") {
     throw std::invalid_argument(
-        "SimulatorOptions.gyroscopic must be kExplicit or kImplicitMidpoint");
+        "SimulatorOptions.gyroscopic must be kExplicit, kImplicitMidpoint or kAuto");
   }
 }
 
@@ -155,7 +154,7 @@ void Simulator::Step(StepStatistics* out) {
   for (const Island& island : islands_) {
     finite = finite && SolveIsland(island, &stats);
   }
-  if (options_.gyroscopic == GyroscopicScheme::kImplicitMidpoint) {
+  if (implicit_step_) {
     // bodies without contact: the implicit midpoint rule alone, torque-free
     for (std::size_t b = 0; b < state_.size(); ++b) {
       BodyStep& w = body_step_[b];
@@ -231,8 +230,10 @@ void Simulator::ComputeMidpoints(StepStatistics* stats, bool* finite) {
     *finite = *finite &&
               MidpointIsFinite(w.position_mid, w.orientation_mid, w.linear_free, w.angular_free);
   }
-  stats->explicit_gyroscopic_unsafe = options_.gyroscopic == GyroscopicScheme::kExplicit &&
-                                      stats->max_dt_omega > kExplicitGyroscopicMaxDtOmega;
+  const bool beyond = stats->max_dt_omega > kExplicitGyroscopicMaxDtOmega;
+  implicit_step_ = options_.gyroscopic == GyroscopicScheme::kImplicitMidpoint ||
+                   (options_.gyroscopic == GyroscopicScheme::kAuto && beyond);
+  stats->explicit_gyroscopic_unsafe = !implicit_step_ && beyond;
 }
 
 bool Simulator::ComputeEndState() {

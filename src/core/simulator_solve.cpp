@@ -103,7 +103,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     }
   }
 
-  const bool implicit = options_.gyroscopic == GyroscopicScheme::kImplicitMidpoint;
+  const bool implicit = implicit_step_;
   const double pass_tolerance = std::max(options_.solver.tolerance_rel, kGyroscopicRoundOff);
   int total_iterations = 0;
   int passes = 0;

@@ -174,6 +174,8 @@ void ValidateNodeParameters(const NodeParameters& p) {
 NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) {
   const ParameterReader r(private_nh);
   NodeParameters p;
+  // explicit while Δt·|ω| is in its safe range, implicit midpoint beyond (as simulate)
+  p.simulator.gyroscopic = GyroscopicScheme::kAuto;
 
   r.String("urdf_file", &p.urdf_file);
   if (!p.urdf_file.empty()) {
@@ -215,7 +217,8 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   r.String("gyroscopic", &name);
   const auto gyroscopic = GyroscopicSchemeFromName(name);
   if (!gyroscopic) {
-    r.Fail("gyroscopic", "unknown scheme \"" + name + "\", expected explicit or implicit_midpoint");
+    r.Fail("gyroscopic", "unknown scheme \"" + name +
+                             "\", expected auto, explicit or implicit_midpoint");
   }
   p.simulator.gyroscopic = *gyroscopic;
   r.Bool("gap_correction", &p.simulator.gap_correction);

@@ -306,7 +306,7 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
       const auto scheme = GyroscopicSchemeFromName(req.gyroscopic);
       if (!scheme) {
         throw std::invalid_argument("unknown gyroscopic scheme \"" + req.gyroscopic +
-                                    "\", expected explicit or implicit_midpoint");
+                                    "\", expected auto, explicit or implicit_midpoint");
       }
       o.gyroscopic = *scheme;
     }

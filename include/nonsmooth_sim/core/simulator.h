@@ -31,6 +31,8 @@
 //    gyroscopic impulse of the current ω_E enters c of the next pass (warm-started), until ω_E
 //    changes by less than the solver's relative tolerance (or round-off), at most
 //    kMaxGyroscopicPasses passes. Torque-free it conserves ½ωᵀΘω and |Θω| to round-off.
+//    GyroscopicScheme::kAuto takes it for the steps in which some body has Δt·|ω_B| above
+//    kExplicitGyroscopicMaxDtOmega, and the paper's explicit term for the others.
 //
 // Properties of the scheme worth knowing (measured on the Tippe-Top, see docs/simulate.md):
 //  - It is velocity-level: (14) constrains γ_N at the end of the step, not g. A contact point that
@@ -77,6 +79,9 @@ enum class GyroscopicScheme {
   kExplicit,         ///< "explicit": the paper's h(q_M, u_B); adds ½Δt²·aᵀΘa per step
   kImplicitMidpoint, ///< "implicit_midpoint": Euler's equations by the implicit midpoint rule,
                      ///< a few fixed-point passes around the contact solve; conserves ½ωᵀΘω, |L|
+  kAuto,             ///< "auto": per step, kExplicit while Δt·|ω_B| ≤ kExplicitGyroscopicMaxDtOmega
+                     ///< for every body, kImplicitMidpoint for a step where a body exceeds it (a
+                     ///< run that stays below is bit-identical to kExplicit)
 };
 std::string_view GyroscopicSchemeName(GyroscopicScheme scheme);
 std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name);
@@ -372,6 +377,7 @@ class Simulator {
   double time_ = 0.0;
   long step_count_ = 0;
   bool diverged_ = false;
+  bool implicit_step_ = false;  // this step uses the implicit midpoint rule (ComputeMidpoints)
   std::vector<ContactState> contacts_;
   ContactSolver solver_;
   // per body: M⁻¹ (10), computed once
