@@ -1,0 +1,135 @@
+// N Tippe-Tops in ODE (Debian's libode-dev 0.16.2, double precision). One body per top with two
+// sphere geoms offset along e3 (the big sphere at a1, the peg at a2), a plane at z = 0.
+//
+// Contacts: one contact joint per touching sphere, friction limits proportional to the normal
+// force (dContactApprox1: mu = 0.3 on both tangent rows), and drilling friction as ODE's
+// "rolling" row about the normal (dContactRolling | dContactAxisDep, rhoN = mu R̄ with
+// dContactApprox1_N, so the torque limit is mu R̄ lambda_N; no rolling resistance). Each row has
+// its own box limit: drilling is decoupled from sliding (the cylinder C_F, with a box for a disc).
+//
+// Settings (--setting): world_step (dWorldStep, the pivoting LCP solver, the default) or
+// quick_step (dWorldQuickStep, 20 SOR iterations, ODE's default count). World ERP 0.2 and CFM
+// 1e-10 (ODE's double-precision defaults), no bounce, no auto-disable, gyroscopic term on.
+#include <ode/ode.h>
+
+#include <vector>
+
+#include "tippe_top_scene.h"
+
+namespace {
+
+using namespace tippe_top;
+
+struct World {
+  dWorldID world;
+  dSpaceID space;
+  dJointGroupID contacts;
+  dSurfaceParameters surface;
+};
+
+void NearCallback(void* data, dGeomID g1, dGeomID g2) {
+  World* w = static_cast<World*>(data);
+  dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+  if (b1 == b2) return;  // the two spheres of one top
+  dContact contact[4];
+  const int n = dCollide(g1, g2, 4, &contact[0].geom, sizeof(dContact));
+  for (int k = 0; k < n; ++k) {
+    contact[k].surface = w->surface;
+    dJointID j = dJointCreateContact(w->world, w->contacts, &contact[k]);
+    dJointAttach(j, b1, b2);
+  }
+}
+
+TopState StateOf(dBodyID b) {
+  TopState s;
+  const dReal* p = dBodyGetPosition(b);
+  const dReal* q = dBodyGetQuaternion(b);  // w, x, y, z
+  const dReal* v = dBodyGetLinearVel(b);
+  const dReal* w = dBodyGetAngularVel(b);  // world frame
+  for (int k = 0; k < 3; ++k) {
+    s.pos[k] = p[k];
+    s.vel[k] = v[k];
+    s.omega[k] = w[k];
+  }
+  for (int k = 0; k < 4; ++k) s.quat[k] = q[k];
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Args args = ParseArgs(argc, argv, {"world_step", "quick_step"});
+  const bool quick = args.setting == "quick_step";
+
+  dInitODE2(0);
+  World w;
+  w.world = dWorldCreate();
+  dWorldSetGravity(w.world, 0, 0, -kGravity);
+  dWorldSetERP(w.world, 0.2);
+  dWorldSetCFM(w.world, 1e-10);
+  dWorldSetQuickStepNumIterations(w.world, 20);
+  dWorldSetAutoDisableFlag(w.world, 0);
+  // a hash space: cells from 2^-7 m (below the peg) to 2^-3 m
+  w.space = dHashSpaceCreate(nullptr);
+  dHashSpaceSetLevels(w.space, -7, -3);
+  w.contacts = dJointGroupCreate(0);
+  dCreatePlane(w.space, 0, 0, 1, 0);
+
+  std::memset(&w.surface, 0, sizeof w.surface);
+  w.surface.mode = dContactApprox1 | dContactRolling | dContactAxisDep | dContactMu2;
+  w.surface.mu = kMu;
+  w.surface.mu2 = kMu;
+  w.surface.rho = 0.0;   // no rolling resistance about the tangents
+  w.surface.rho2 = 0.0;
+  w.surface.rhoN = kTorsionalLength;  // drilling: |tau_n| <= mu R̄ lambda_N
+  w.surface.bounce = 0.0;
+
+  std::vector<dBodyID> bodies;
+  std::vector<TopState> initial;
+  for (int i = 0; i < args.n; ++i) {
+    const Start s = StartOf(i, args.n);
+    dBodyID b = dBodyCreate(w.world);
+    dMass m;
+    dMassSetParameters(&m, kMass, 0, 0, 0, kA, kA, kC, 0, 0, 0);
+    dBodySetMass(b, &m);
+    dBodySetPosition(b, s.pos[0], s.pos[1], s.pos[2]);
+    dQuaternion q = {s.quat[0], s.quat[1], s.quat[2], s.quat[3]};
+    dBodySetQuaternion(b, q);
+    dBodySetLinearVel(b, 0, 0, 0);
+    dBodySetAngularVel(b, s.omega[0], s.omega[1], s.omega[2]);
+    dBodySetGyroscopicMode(b, 1);
+    dGeomID big = dCreateSphere(w.space, kR1);
+    dGeomSetBody(big, b);
+    dGeomSetOffsetPosition(big, 0, 0, kA1);
+    dGeomID peg = dCreateSphere(w.space, kR2);
+    dGeomSetBody(peg, b);
+    dGeomSetOffsetPosition(peg, 0, 0, kA2);
+    bodies.push_back(b);
+    initial.push_back(StateOf(b));
+  }
+
+  const long steps = StepsOf(args);
+  std::vector<Monitor> monitors = MonitorsFor(initial);
+  const double c0 = CpuSeconds();
+  for (long k = 1; k <= steps; ++k) {
+    dSpaceCollide(w.space, &w, NearCallback);
+    if (quick) dWorldQuickStep(w.world, args.dt);
+    else dWorldStep(w.world, args.dt);
+    dJointGroupEmpty(w.contacts);
+    const double t = k * args.dt;
+    for (size_t i = 0; i < bodies.size(); ++i) monitors[i].Update(t, StateOf(bodies[i]));
+  }
+  const double cpu = CpuSeconds() - c0;
+
+  std::vector<TopState> final_state;
+  for (dBodyID b : bodies) final_state.push_back(StateOf(b));
+  const std::string settings =
+      std::string(quick ? "dWorldQuickStep 20 iter" : "dWorldStep (LCP)") +
+      ", Approx1 box friction mu 0.3, drilling rhoN = mu*Rbar (box, decoupled), ERP 0.2, CFM 1e-10";
+  PrintResult("ode", "0.16.2", settings, args, steps, cpu, monitors, initial, final_state);
+  dJointGroupDestroy(w.contacts);
+  dSpaceDestroy(w.space);
+  dWorldDestroy(w.world);
+  dCloseODE();
+  return 0;
+}
