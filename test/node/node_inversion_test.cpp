@@ -15,8 +15,6 @@
 #include <vector>
 
 #include "nonsmooth_sim/ContactInfoArray.h"
-#include "nonsmooth_sim/GetFrictionSet.h"
-#include "nonsmooth_sim/GetSolverProperties.h"
 #include "nonsmooth_sim/StepSimulation.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
@@ -45,21 +43,10 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   Recorder<ContactInfoArray> contacts(nh, kNode + "contacts", 1000000);
   Recorder<tf2_msgs::TFMessage> tf(nh, "/tf", 1000000);
 
-  // the node's settings, for the headless reference
-  const GetSolverProperties::Response p =
-      Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response;
-  const GetFrictionSet::Response sets = Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
-  ASSERT_EQ(p.time_step, 1e-4);
-  TippeTopParameters parameters;
-  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
-  SimulatorOptions options;
-  options.time_step = p.time_step;
-  options.solver.type = *SolverTypeFromName(p.solver);
-  options.solver.tolerance_rel = p.tolerance;
-  options.solver.tolerance_abs = p.tolerance_abs;
-  options.solver.max_iterations = p.max_iterations;
-  options.solver.relaxation = p.relaxation;
-  options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
+  // the headless reference with the node's settings
+  Simulator reference = HeadlessTippeTop(nh);
+  const double dt = reference.options().time_step;
+  ASSERT_EQ(dt, 1e-4);
 
   // connected: a subscriber counts as connected before the node has its link, so step (paused)
   // until all three streams flow
@@ -76,26 +63,26 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   // as fast as possible until the node pauses itself at ~duration
   Call<std_srvs::Empty>(nh, kNode + "unpause_physics");
   ASSERT_TRUE(states.WaitForMessage(
-      [&](const SimulationState& m) { return m.sim_time >= kDuration - 0.5 * p.time_step; }, 45.0))
+      [&](const SimulationState& m) { return m.sim_time >= kDuration - 0.5 * dt; }, 45.0))
       << "the node did not reach t = " << kDuration << " s";
   const std::vector<SimulationState> received = states.Messages();
-  const std::int64_t total_steps = std::llround(received.back().sim_time / p.time_step);
+  const std::int64_t total_steps = std::llround(received.back().sim_time / dt);
   // the last ~contacts and /tf of the run (at the last multiple of 10 steps) arrive too
   const std::int64_t last_publish = total_steps / kContactsPeriod * kContactsPeriod;
   ASSERT_TRUE(contacts.WaitForMessage(
       [&](const ContactInfoArray& m) {
-        return std::llround(m.sim_time / p.time_step) == last_publish;
+        return std::llround(m.sim_time / dt) == last_publish;
       },
       20.0));
   ASSERT_TRUE(tf.WaitForMessage(
       [&](const tf2_msgs::TFMessage& m) {
-        return std::llround(m.transforms[0].header.stamp.toSec() / p.time_step) == last_publish;
+        return std::llround(m.transforms[0].header.stamp.toSec() / dt) == last_publish;
       },
       20.0));
 
   // Nothing dropped: roscpp numbers the messages of each topic (header.seq) and the sim times
   // step on by the advertised period (~state every step, ~contacts and /tf every 10 steps).
-  auto step_of = [&](double sim_time) { return std::llround(sim_time / p.time_step); };
+  auto step_of = [&](double sim_time) { return std::llround(sim_time / dt); };
   for (std::size_t i = 1; i < received.size(); ++i) {
     ASSERT_EQ(received[i].header.seq, received[i - 1].header.seq + 1) << "gap at " << i;
     ASSERT_EQ(step_of(received[i].sim_time), step_of(received[i - 1].sim_time) + 1) << i;
@@ -115,7 +102,6 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   EXPECT_GT(received.size(), 15000u);  // 1.6 s at one state per step
 
   // the headless core, step by step
-  Simulator reference(MakeTippeTopScene(parameters), options);
   std::vector<double> ref_time(total_steps + 1, 0.0), ref_theta(total_steps + 1, 0.0);
   std::map<std::int64_t, std::vector<std::string>> ref_contacts;  // at the ~contacts steps
   ref_theta[0] = Inclination(reference.state()[0]);

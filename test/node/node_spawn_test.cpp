@@ -22,10 +22,8 @@
 #include <string>
 
 #include "nonsmooth_sim/DeleteModel.h"
-#include "nonsmooth_sim/GetFrictionSet.h"
 #include "nonsmooth_sim/GetModelState.h"
 #include "nonsmooth_sim/GetSimulationState.h"
-#include "nonsmooth_sim/GetSolverProperties.h"
 #include "nonsmooth_sim/GetWorldProperties.h"
 #include "nonsmooth_sim/SetModelState.h"
 #include "nonsmooth_sim/SpawnModel.h"
@@ -73,25 +71,6 @@ class Spawn : public testing::Test {
   ros::NodeHandle nh_;
 };
 
-// The node's settings, for the headless reference (as node_inversion_test).
-Simulator HeadlessTop(ros::NodeHandle& nh) {
-  const GetSolverProperties::Response p =
-      Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response;
-  const GetFrictionSet::Response sets =
-      Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
-  TippeTopParameters parameters;
-  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
-  SimulatorOptions options;
-  options.time_step = p.time_step;
-  options.solver.type = *SolverTypeFromName(p.solver);
-  options.solver.tolerance_rel = p.tolerance;
-  options.solver.tolerance_abs = p.tolerance_abs;
-  options.solver.max_iterations = p.max_iterations;
-  options.solver.relaxation = p.relaxation;
-  options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
-  return Simulator(MakeTippeTopScene(parameters), options);
-}
-
 // The node's first body equals the headless top, bit for bit.
 void ExpectSameAsHeadless(const SimulationState& node, const Simulator& headless,
                           const char* when) {
@@ -132,7 +111,7 @@ std::set<std::string> ChildFrames(const std::vector<tf2_msgs::TFMessage>& messag
 TEST_F(Spawn, ASecondTopInvertsAndItsDeletionLeavesTheFirstExactlyAsAlone) {
   Recorder<tf2_msgs::TFMessage> tf(nh_, "/tf", 1000000);
   Recorder<diagnostic_msgs::DiagnosticArray> diagnostics(nh_, "/diagnostics");
-  Simulator headless = HeadlessTop(nh_);
+  Simulator headless = HeadlessTippeTop(nh_);
   const std::string xml = ReadFile(kTippeTopUrdf);
   ASSERT_FALSE(xml.empty());
 

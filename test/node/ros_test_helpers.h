@@ -12,7 +12,11 @@
 #include <vector>
 
 #include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/GetFrictionSet.h"
+#include "nonsmooth_sim/GetSolverProperties.h"
 #include "nonsmooth_sim/SimulationState.h"
+#include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/core/tippe_top.h"
 
 namespace nonsmooth_sim::node::test {
 
@@ -86,6 +90,26 @@ S Call(ros::NodeHandle& nh, const std::string& name, S srv = S()) {
   EXPECT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name;
   EXPECT_TRUE(client.call(srv)) << name;
   return srv;
+}
+
+/// The headless core's Tippe-Top with the running node's settings (~get_solver_properties and the
+/// first collision's friction set): the reference a node run must equal.
+inline Simulator HeadlessTippeTop(ros::NodeHandle& nh) {
+  const GetSolverProperties::Response p =
+      Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response;
+  const GetFrictionSet::Response sets =
+      Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
+  TippeTopParameters parameters;
+  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
+  SimulatorOptions options;
+  options.time_step = p.time_step;
+  options.solver.type = *SolverTypeFromName(p.solver);
+  options.solver.tolerance_rel = p.tolerance;
+  options.solver.tolerance_abs = p.tolerance_abs;
+  options.solver.max_iterations = p.max_iterations;
+  options.solver.relaxation = p.relaxation;
+  options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
+  return Simulator(MakeTippeTopScene(parameters), options);
 }
 
 /// The contacts of `msg` that involve collision `collision` (on either side), in message order.
