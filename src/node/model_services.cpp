@@ -63,8 +63,8 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
           "model_name \"" + req.model_name +
               "\": must be letters, digits and '_', not starting with a digit (it prefixes the "
               "model's TF frames and collision names)");
-    Check(ModelIndex(req.model_name) < 0, "model_name \"" + req.model_name +
-                                              "\" exists already; the models are: " + ModelNames());
+    Check(ModelIndex(req.model_name) < 0,
+          "model_name \"" + req.model_name + "\" exists already (~delete_model it first)");
     const std::string ns = req.robot_namespace.empty() ? req.model_name : req.robot_namespace;
     std::string why;
     Check(ros::names::validate(ns, why), "robot_namespace \"" + ns + "\": " + why);
@@ -123,8 +123,7 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
   const int m = ModelIndex(req.model_name);
   if (m < 0) {
     res.success = false;
-    res.status_message = "no model \"" + req.model_name + "\"; the models are: " + ModelNames() +
-                         "; nothing changed";
+    res.status_message = UnknownModel(req.model_name) + "; nothing changed";
     return true;
   }
   const Model removed = models_[static_cast<std::size_t>(m)];

@@ -22,10 +22,10 @@ int SimulationNode::ModelIndex(const std::string& name) const {
   return -1;
 }
 
-std::string SimulationNode::ModelNames() const {
-  std::string out;
-  for (const Model& m : models_) out += (out.empty() ? "" : ", ") + m.name;
-  return out;
+std::string SimulationNode::UnknownModel(const std::string& name) const {
+  std::string names;
+  for (const Model& m : models_) names += (names.empty() ? "" : ", ") + m.name;
+  return "no model \"" + name + "\"; the models are: " + names;
 }
 
 int SimulationNode::ScopedBodyIndex(const std::string& name) const {
@@ -101,7 +101,7 @@ bool SimulationNode::OnGetModelProperties(GetModelProperties::Request& req,
   const int m = ModelIndex(req.model_name);
   if (m < 0) {
     res.success = false;
-    res.status_message = "no model \"" + req.model_name + "\"; the models are: " + ModelNames();
+    res.status_message = UnknownModel(req.model_name);
     return true;
   }
   const Model& model = models_[static_cast<std::size_t>(m)];
@@ -129,7 +129,7 @@ bool SimulationNode::OnGetModelState(GetModelState::Request& req, GetModelState:
   const int m = ModelIndex(req.model_name);
   if (m < 0) {
     res.success = false;
-    res.status_message = "no model \"" + req.model_name + "\"; the models are: " + ModelNames();
+    res.status_message = UnknownModel(req.model_name);
     return true;
   }
   const Model& model = models_[static_cast<std::size_t>(m)];
@@ -178,7 +178,7 @@ bool SimulationNode::OnSetModelState(SetModelState::Request& req, SetModelState:
   const ModelState& request = req.model_state;
   try {
     const int m = ModelIndex(request.model_name);
-    Check(m >= 0, "no model \"" + request.model_name + "\"; the models are: " + ModelNames());
+    Check(m >= 0, UnknownModel(request.model_name));
     const Model& model = models_[static_cast<std::size_t>(m)];
     Check(!model.bodies.empty(), "model \"" + model.name + "\" has no free body");
     const Frame reference =

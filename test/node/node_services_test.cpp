@@ -76,18 +76,7 @@ class NodeServices : public testing::Test {
   }
   /// The core simulator with the node's scene (urdf/tippe_top.urdf = MakeTippeTopScene()) and
   /// the node's current solver settings.
-  Simulator Headless() {
-    const GetSolverProperties::Response p = Solver();
-    SimulatorOptions o;
-    o.time_step = p.time_step;
-    o.solver.type = *SolverTypeFromName(p.solver);
-    o.solver.tolerance_rel = p.tolerance;
-    o.solver.tolerance_abs = p.tolerance_abs;
-    o.solver.max_iterations = p.max_iterations;
-    o.solver.relaxation = p.relaxation;
-    o.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
-    return Simulator(MakeTippeTopScene(), o);
-  }
+  Simulator Headless() { return Simulator(MakeTippeTopScene(), NodeSimulatorOptions(nh_)); }
   static SimulationState StateOf(const Simulator& sim) {
     SimulationState msg;
     FillState(sim, true, "world", &msg);

@@ -92,15 +92,10 @@ S Call(ros::NodeHandle& nh, const std::string& name, S srv = S()) {
   return srv;
 }
 
-/// The headless core's Tippe-Top with the running node's settings (~get_solver_properties and the
-/// first collision's friction set): the reference a node run must equal.
-inline Simulator HeadlessTippeTop(ros::NodeHandle& nh) {
+/// The running node's simulator settings (~get_solver_properties).
+inline SimulatorOptions NodeSimulatorOptions(ros::NodeHandle& nh) {
   const GetSolverProperties::Response p =
       Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response;
-  const GetFrictionSet::Response sets =
-      Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
-  TippeTopParameters parameters;
-  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
   SimulatorOptions options;
   options.time_step = p.time_step;
   options.solver.type = *SolverTypeFromName(p.solver);
@@ -109,7 +104,17 @@ inline Simulator HeadlessTippeTop(ros::NodeHandle& nh) {
   options.solver.max_iterations = p.max_iterations;
   options.solver.relaxation = p.relaxation;
   options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
-  return Simulator(MakeTippeTopScene(parameters), options);
+  return options;
+}
+
+/// The headless core's Tippe-Top with the running node's settings and the first collision's
+/// friction set: the reference a node run must equal.
+inline Simulator HeadlessTippeTop(ros::NodeHandle& nh) {
+  const GetFrictionSet::Response sets =
+      Call<GetFrictionSet>(nh, kNode + "get_friction_set").response;
+  TippeTopParameters parameters;
+  parameters.friction_set = *FrictionSetFromName(sets.friction_sets.at(0));
+  return Simulator(MakeTippeTopScene(parameters), NodeSimulatorOptions(nh));
 }
 
 /// The contacts of `msg` that involve collision `collision` (on either side), in message order.

@@ -157,7 +157,8 @@ class SimulationNode {
   void WorldChanged();
   void BuildModels();
   int ModelIndex(const std::string& name) const;       ///< -1 if unknown
-  std::string ModelNames() const;                      ///< "a, b"
+  /// 'no model "<name>"; the models are: a, b' (the reply to an unknown model name)
+  std::string UnknownModel(const std::string& name) const;
   int ScopedBodyIndex(const std::string& name) const;  ///< "<model>::<link>" or "<link>"; -1
   std::string ScopedBodyName(int body) const;          ///< "<model>::<link>"
   /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
