@@ -13,9 +13,19 @@
 // implicit gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, Bullet's default), one
 // internal step of dt per stepSimulation.
 //
+// Combining rules: Bullet's defaults multiply (friction mu_a mu_b, spinning s_a mu_b + mu_a s_b),
+// which would give two tops mu = 0.09; the program sets the pair rule of nonsmooth_sim (and
+// MuJoCo's max): friction min(mu_a, mu_b), spinning friction max(s_a, s_b); against the ground
+// (friction 1, spinning 0) that is the same mu = 0.3 and mu R̄ as the multiplying rules, so only
+// the crowd's top-top contacts see the difference. With --scene crowd the tops of CrowdStartOf()
+// between the four static planes of CrowdWalls() (friction 1, spinning and rolling 0, as the ground).
+//
 // Settings (--setting): default (10 iterations, one friction direction along the slip, split
 // impulse, Bullet's defaults) or iter100_2dir (100 iterations, two friction directions).
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
 
 #include <memory>
 #include <vector>
@@ -27,6 +37,13 @@ namespace {
 using namespace tippe_top;
 
 constexpr double kRollingFrictionEnable = 1e-12;  // [m], see above
+
+btScalar MinFriction(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::min(a->getFriction(), b->getFriction());
+}
+btScalar MaxSpinningFriction(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::max(a->getSpinningFriction(), b->getSpinningFriction());
+}
 
 TopState StateOf(const btRigidBody* b) {
   TopState s;
@@ -52,6 +69,8 @@ int main(int argc, char** argv) {
   const Args args = ParseArgs(argc, argv, {"default", "iter100_2dir"});
   const bool strong = args.setting == "iter100_2dir";
 
+  gCalculateCombinedFrictionCallback = &MinFriction;
+  gCalculateCombinedSpinningFrictionCallback = &MaxSpinningFriction;
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher(&configuration);
   btDbvtBroadphase broadphase;
@@ -71,6 +90,22 @@ int main(int argc, char** argv) {
   ground_info.m_restitution = 0.0;
   btRigidBody ground(ground_info);
   world.addRigidBody(&ground);
+  // the crowd's walls: static planes n . x = d, n towards the arena
+  std::vector<std::unique_ptr<btStaticPlaneShape>> wall_shapes;
+  std::vector<std::unique_ptr<btRigidBody>> walls;
+  if (args.crowd()) {
+    for (const Wall& wall : CrowdWalls(args.n)) {
+      wall_shapes.push_back(std::make_unique<btStaticPlaneShape>(
+          btVector3(wall.normal[0], wall.normal[1], wall.normal[2]), wall.d));
+      btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, wall_shapes.back().get());
+      info.m_friction = 1.0;
+      info.m_rollingFriction = 0.0;
+      info.m_spinningFriction = 0.0;
+      info.m_restitution = 0.0;
+      walls.push_back(std::make_unique<btRigidBody>(info));
+      world.addRigidBody(walls.back().get());
+    }
+  }
 
   btSphereShape big(kR1), peg(kR2);
   btCompoundShape top_shape;
@@ -80,7 +115,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<TopState> initial;
   for (int i = 0; i < args.n; ++i) {
-    const Start s = StartOf(i, args.n);
+    const Start s = args.StartOf(i);
     btRigidBody::btRigidBodyConstructionInfo info(kMass, nullptr, &top_shape, btVector3(kA, kA, kC));
     info.m_startWorldTransform = btTransform(btQuaternion(s.quat[1], s.quat[2], s.quat[3], s.quat[0]),
                                              btVector3(s.pos[0], s.pos[1], s.pos[2]));
@@ -93,7 +128,7 @@ int main(int argc, char** argv) {
     auto b = std::make_unique<btRigidBody>(info);
     b->setActivationState(DISABLE_DEACTIVATION);
     b->setFlags(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
-    b->setLinearVelocity(btVector3(0, 0, 0));
+    b->setLinearVelocity(btVector3(s.vel[0], s.vel[1], s.vel[2]));
     b->setAngularVelocity(btVector3(s.omega[0], s.omega[1], s.omega[2]));
     world.addRigidBody(b.get());
     initial.push_back(StateOf(b.get()));
@@ -102,11 +137,17 @@ int main(int argc, char** argv) {
 
   const long steps = StepsOf(args);
   std::vector<Monitor> monitors = MonitorsFor(initial);
+  PairMonitor pairs(args.n, CrowdWalls(args.n));
+  std::vector<TopState> state(bodies.size());
   const double c0 = CpuSeconds();
   for (long k = 1; k <= steps; ++k) {
     world.stepSimulation(args.dt, 0);  // maxSubSteps 0: exactly one step of dt
     const double t = k * args.dt;
-    for (size_t i = 0; i < bodies.size(); ++i) monitors[i].Update(t, StateOf(bodies[i].get()));
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      state[i] = StateOf(bodies[i].get());
+      monitors[i].Update(t, state[i]);
+    }
+    if (args.crowd()) pairs.Update(state);
   }
   const double cpu = CpuSeconds() - c0;
 
@@ -114,11 +155,14 @@ int main(int argc, char** argv) {
   for (const auto& b : bodies) final_state.push_back(StateOf(b.get()));
   const std::string settings =
       std::string(strong ? "SI 100 iter, 2 friction dirs" : "SI 10 iter (default), 1 friction dir") +
-      ", mu 0.3, spinning friction mu*Rbar (decoupled), rolling 1e-12, split impulse, ERP2 0.2";
+      ", mu 0.3, spinning friction mu*Rbar (decoupled), rolling 1e-12, split impulse, ERP2 0.2, "
+      "pairs: min friction, max spinning friction";
   std::string version = std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100);
   version += btIsDoublePrecision() ? " (double)" : " (single)";
-  PrintResult("bullet", version, settings, args, steps, cpu, monitors, initial, final_state);
+  PrintResult("bullet", version, settings, args, steps, cpu, monitors, initial, final_state,
+              args.crowd() ? pairs.Json() : "");
   for (const auto& b : bodies) world.removeRigidBody(b.get());
+  for (const auto& b : walls) world.removeRigidBody(b.get());
   world.removeRigidBody(&ground);
   return 0;
 }

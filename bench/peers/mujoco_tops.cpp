@@ -10,6 +10,18 @@
 // Both are soft constraints (MuJoCo's convex formulation, default solref 0.02 1 and solimp
 // 0.9 0.95 0.001), Newton solver (default: 100 iterations, tolerance 1e-8), Euler integrator.
 //
+// Sizes: MuJoCo 2.2 preallocates its contact and constraint buffers (nconmax, default 100
+// contacts; njmax, default 500 rows) and drops the contacts beyond them with a warning ("Pre-
+// allocated contact buffer is full"): a top whose contact is dropped falls through the floor. So
+// the model sizes them: nconmax = 2 n + 64 for independent tops (each sphere has at most one
+// contact, with the ground), 4 n + 64 in the crowd (ground, walls and neighbours; measured: at
+// most 78 contacts for 64 tops in 1 s), njmax = the rows of nconmax contacts (condim rows with the elliptic cone,
+// 2 (condim - 1) with the pyramidal one). A run that still fills a buffer reports
+// "buffer_overflow": true (and a line on stderr). The buffers are allocated once, by mj_makeData;
+// MuJoCo 2.2 keeps dense njmax x njmax and njmax x nv arrays among them, so they dominate the
+// peak RSS and grow with N^2.
+// With --scene crowd the tops of CrowdStartOf() between the four wall planes of CrowdWalls().
+//
 // Settings (--setting): elliptic (the default), pyramidal, or elliptic_condim3 (a check: elliptic
 // cone without torsional friction, condim 3).
 #include <mujoco/mujoco.h>
@@ -33,12 +45,29 @@ std::string ModelXml(const Args& a, bool elliptic, int condim) {
                 "solver=\"Newton\"/>\n",
                 a.dt, -kGravity, elliptic ? "elliptic" : "pyramidal");
   xml += buf;
+  const int nconmax = (a.crowd() ? 4 : 2) * a.n + 64;
+  const int rows = elliptic ? condim : 2 * (condim - 1);
+  std::snprintf(buf, sizeof buf, "  <size nconmax=\"%d\" njmax=\"%d\"/>\n", nconmax, rows * nconmax);
+  xml += buf;
   std::snprintf(buf, sizeof buf,
                 "  <default><geom condim=\"%d\" friction=\"%.17g %.17g 0\"/></default>\n", condim,
                 kMu, kTorsionalLength);
   xml += buf;
-  // a plane collides as an infinite one; its size (for rendering) covers the grid of 256 tops anyway
+  // a plane collides as an infinite one (a half-space); its size is for rendering only
   xml += "  <worldbody>\n    <geom name=\"ground\" type=\"plane\" size=\"100 100 0.1\"/>\n";
+  if (a.crowd()) {
+    const std::vector<Wall> walls = CrowdWalls(a.n);
+    for (size_t w = 0; w < walls.size(); ++w) {
+      const Wall& wall = walls[w];
+      // the plane's z axis is the wall's normal, its origin the point d n
+      std::snprintf(buf, sizeof buf,
+                    "    <geom name=\"wall%zu\" type=\"plane\" size=\"1 1 0.1\" pos=\"%.17g %.17g %.17g\" "
+                    "zaxis=\"%.17g %.17g %.17g\"/>\n",
+                    w, wall.d * wall.normal[0], wall.d * wall.normal[1], wall.d * wall.normal[2],
+                    wall.normal[0], wall.normal[1], wall.normal[2]);
+      xml += buf;
+    }
+  }
   for (int i = 0; i < a.n; ++i) {
     // the pose is set through qpos below; the body frame is the centre of mass S, z = e3
     std::snprintf(buf, sizeof buf,
@@ -94,13 +123,13 @@ int main(int argc, char** argv) {
 
   std::vector<TopState> initial;
   for (int i = 0; i < args.n; ++i) {
-    const Start s = StartOf(i, args.n);
+    const Start s = args.StartOf(i);
     const int j = m->body_jntadr[i + 1];
     mjtNum* q = d->qpos + m->jnt_qposadr[j];
     mjtNum* v = d->qvel + m->jnt_dofadr[j];
     for (int k = 0; k < 3; ++k) q[k] = s.pos[k];
     for (int k = 0; k < 4; ++k) q[3 + k] = s.quat[k];
-    for (int k = 0; k < 3; ++k) v[k] = 0.0;
+    for (int k = 0; k < 3; ++k) v[k] = s.vel[k];  // free joint: linear velocity in the world
     v[3] = 0.0;  // spin about the body's e3
     v[4] = 0.0;
     v[5] = s.spin;
@@ -110,13 +139,26 @@ int main(int argc, char** argv) {
 
   const long steps = StepsOf(args);
   std::vector<Monitor> monitors = MonitorsFor(initial);
+  PairMonitor pairs(args.n, CrowdWalls(args.n));
+  std::vector<TopState> state(args.n);
+  int max_contacts = 0;  // the most contacts MuJoCo found in one step (to check nconmax)
   const double c0 = CpuSeconds();
   for (long k = 1; k <= steps; ++k) {
     mj_step(m, d);
     const double t = k * args.dt;
-    for (int i = 0; i < args.n; ++i) monitors[i].Update(t, StateOf(m, d, i));
+    for (int i = 0; i < args.n; ++i) {
+      state[i] = StateOf(m, d, i);
+      monitors[i].Update(t, state[i]);
+    }
+    if (args.crowd()) pairs.Update(state);
+    if (d->ncon > max_contacts) max_contacts = d->ncon;
   }
   const double cpu = CpuSeconds() - c0;
+  // a full buffer drops contacts: the run is not valid
+  const bool overflow = d->warning[mjWARN_CONTACTFULL].number > 0 || d->warning[mjWARN_CNSTRFULL].number > 0;
+  if (overflow)
+    std::fprintf(stderr, "mujoco_tops: contact or constraint buffer full (nconmax %d, njmax %d)\n",
+                 m->nconmax, m->njmax);
 
   std::vector<TopState> final_state;
   for (int i = 0; i < args.n; ++i) final_state.push_back(StateOf(m, d, i));
@@ -125,7 +167,10 @@ int main(int argc, char** argv) {
       (condim == 4 ? ", condim 4, friction 0.3 / torsional mu*Rbar / rolling 0"
                    : ", condim 3 (no torsional friction), friction 0.3") +
       ", Newton, Euler, default solref/solimp";
-  PrintResult("mujoco", mj_versionString(), settings, args, steps, cpu, monitors, initial, final_state);
+  std::string extra = "\"max_contacts\": " + std::to_string(max_contacts) + ", \"nconmax\": " +
+                      std::to_string(m->nconmax) + ", \"buffer_overflow\": " + (overflow ? "true" : "false");
+  if (args.crowd()) extra += ", " + pairs.Json();
+  PrintResult("mujoco", mj_versionString(), settings, args, steps, cpu, monitors, initial, final_state, extra);
   mj_deleteData(d);
   mj_deleteModel(m);
   return 0;

@@ -1,5 +1,6 @@
 // N Tippe-Tops in ODE (Debian's libode-dev 0.16.2, double precision). One body per top with two
-// sphere geoms offset along e3 (the big sphere at a1, the peg at a2), a plane at z = 0.
+// sphere geoms offset along e3 (the big sphere at a1, the peg at a2), a plane at z = 0; with
+// --scene crowd the tops of CrowdStartOf() between the four wall planes of CrowdWalls().
 //
 // Contacts: one contact joint per touching sphere, friction limits proportional to the normal
 // force (dContactApprox1: mu = 0.3 on both tangent rows), and drilling friction as ODE's
@@ -10,6 +11,7 @@
 // Settings (--setting): world_step (dWorldStep, the pivoting LCP solver, the default) or
 // quick_step (dWorldQuickStep, 20 SOR iterations, ODE's default count). World ERP 0.2 and CFM
 // 1e-10 (ODE's double-precision defaults), no bounce, no auto-disable, gyroscopic term on.
+// Top-top and top-wall contacts get the same surface as the ground.
 #include <ode/ode.h>
 
 #include <vector>
@@ -74,6 +76,9 @@ int main(int argc, char** argv) {
   dHashSpaceSetLevels(w.space, -7, -3);
   w.contacts = dJointGroupCreate(0);
   dCreatePlane(w.space, 0, 0, 1, 0);
+  if (args.crowd())  // planes a x + b y + c z = d, (a, b, c) towards the free side
+    for (const Wall& wall : CrowdWalls(args.n))
+      dCreatePlane(w.space, wall.normal[0], wall.normal[1], wall.normal[2], wall.d);
 
   std::memset(&w.surface, 0, sizeof w.surface);
   w.surface.mode = dContactApprox1 | dContactRolling | dContactAxisDep | dContactMu2;
@@ -87,7 +92,7 @@ int main(int argc, char** argv) {
   std::vector<dBodyID> bodies;
   std::vector<TopState> initial;
   for (int i = 0; i < args.n; ++i) {
-    const Start s = StartOf(i, args.n);
+    const Start s = args.StartOf(i);
     dBodyID b = dBodyCreate(w.world);
     dMass m;
     dMassSetParameters(&m, kMass, 0, 0, 0, kA, kA, kC, 0, 0, 0);
@@ -95,7 +100,7 @@ int main(int argc, char** argv) {
     dBodySetPosition(b, s.pos[0], s.pos[1], s.pos[2]);
     dQuaternion q = {s.quat[0], s.quat[1], s.quat[2], s.quat[3]};
     dBodySetQuaternion(b, q);
-    dBodySetLinearVel(b, 0, 0, 0);
+    dBodySetLinearVel(b, s.vel[0], s.vel[1], s.vel[2]);
     dBodySetAngularVel(b, s.omega[0], s.omega[1], s.omega[2]);
     dBodySetGyroscopicMode(b, 1);
     dGeomID big = dCreateSphere(w.space, kR1);
@@ -110,6 +115,8 @@ int main(int argc, char** argv) {
 
   const long steps = StepsOf(args);
   std::vector<Monitor> monitors = MonitorsFor(initial);
+  PairMonitor pairs(args.n, CrowdWalls(args.n));
+  std::vector<TopState> state(bodies.size());
   const double c0 = CpuSeconds();
   for (long k = 1; k <= steps; ++k) {
     dSpaceCollide(w.space, &w, NearCallback);
@@ -117,7 +124,11 @@ int main(int argc, char** argv) {
     else dWorldStep(w.world, args.dt);
     dJointGroupEmpty(w.contacts);
     const double t = k * args.dt;
-    for (size_t i = 0; i < bodies.size(); ++i) monitors[i].Update(t, StateOf(bodies[i]));
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      state[i] = StateOf(bodies[i]);
+      monitors[i].Update(t, state[i]);
+    }
+    if (args.crowd()) pairs.Update(state);
   }
   const double cpu = CpuSeconds() - c0;
 
@@ -126,7 +137,8 @@ int main(int argc, char** argv) {
   const std::string settings =
       std::string(quick ? "dWorldQuickStep 20 iter" : "dWorldStep (LCP)") +
       ", Approx1 box friction mu 0.3, drilling rhoN = mu*Rbar (box, decoupled), ERP 0.2, CFM 1e-10";
-  PrintResult("ode", "0.16.2", settings, args, steps, cpu, monitors, initial, final_state);
+  PrintResult("ode", "0.16.2", settings, args, steps, cpu, monitors, initial, final_state,
+              args.crowd() ? pairs.Json() : "");
   dJointGroupDestroy(w.contacts);
   dSpaceDestroy(w.space);
   dWorldDestroy(w.world);

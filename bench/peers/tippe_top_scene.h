@@ -8,13 +8,17 @@
 // same numbers and the same StartOf() rule.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <sys/resource.h>
 
 namespace tippe_top {
 
@@ -55,6 +59,18 @@ constexpr double kTheta24 = 2.4;
 // records the largest excursion to show that they did
 constexpr double kSpacing = 5.0;
 
+// --- the crowd: n tops close together in a walled square arena (--scene crowd) ---------------
+// The tops start on a square grid kCrowdSpacing apart (big spheres 15 mm apart), centred on the
+// origin, with the tilt, tilt direction and spin of StartOf() and a horizontal velocity of
+// 0.1 .. 0.3 m/s in a varied direction, so that they hit each other and the walls. The arena is
+// the square |x|, |y| <= CrowdHalfWidth(n) = columns * kCrowdSpacing / 2, bounded by four
+// vertical planes (half-spaces: the wall's solid side is outside), as are the ground z = 0.
+constexpr double kCrowdSpacing = 0.045;
+// two tops "touch" (the pair monitor, the same rule in every engine and in
+// bench/peers/crowd_contacts.py for ours) when a sphere of one is within this gap of a sphere of
+// the other; a top touches a wall when a sphere is within it of the wall's plane
+constexpr double kTouchGap = 1e-5;
+
 // Start of top i of n (n = 1: exactly config/tippe_top.yaml). Top 0 is always the reference
 // start; the others vary tilt (0.05 .. 0.2 rad), tilt direction and spin (150 .. 210 rad/s,
 // either sense), so that they do not move in lockstep.
@@ -63,6 +79,7 @@ struct Start {
   double pos[3];                 // centre of mass
   double quat[4];                // w, x, y, z: body (S, e3 = z) to world
   double omega[3];               // world frame (spin * e3)
+  double vel[3];                 // of the centre of mass, world frame (0 except in the crowd)
 };
 
 inline Start StartOf(int i, int n) {
@@ -76,7 +93,7 @@ inline Start StartOf(int i, int n) {
     s.azimuth = 2.399963229728653 * i;  // golden angle
     s.spin = (150.0 + 10.0 * (i % 7)) * ((i / 7) % 2 == 0 ? 1.0 : -1.0);
   }
-  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));  // ColumnsOf
   s.pos[0] = kSpacing * (i % columns);
   s.pos[1] = kSpacing * (i / columns);
   s.pos[2] = kR1 - kA1 * std::cos(s.theta0);  // big sphere just touching
@@ -91,6 +108,36 @@ inline Start StartOf(int i, int n) {
   const double e3[3] = {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
   for (int k = 0; k < 3; ++k) s.omega[k] = s.spin * e3[k];
   return s;
+}
+
+inline int ColumnsOf(int n) { return static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))); }
+
+inline double CrowdHalfWidth(int n) { return 0.5 * kCrowdSpacing * ColumnsOf(n); }
+
+// Start of top i of the crowd of n: StartOf()'s tilt, direction and spin, on the crowd's grid,
+// moving at 0.1 + 0.1 (i % 3) m/s in the direction 1.3 + golden angle * i (not the tilt's).
+inline Start CrowdStartOf(int i, int n) {
+  Start s = StartOf(i, n);
+  const int columns = ColumnsOf(n);
+  s.pos[0] = kCrowdSpacing * ((i % columns) - 0.5 * (columns - 1));
+  s.pos[1] = kCrowdSpacing * ((i / columns) - 0.5 * (columns - 1));
+  const double speed = 0.1 + 0.1 * (i % 3);
+  const double heading = 1.3 + 2.399963229728653 * i;
+  s.vel[0] = speed * std::cos(heading);
+  s.vel[1] = speed * std::sin(heading);
+  s.vel[2] = 0.0;
+  return s;
+}
+
+// The walls of the crowd's arena: planes n . x = d with the normal n pointing into the arena
+// (the free side), d = -CrowdHalfWidth(n); the ground is z = 0 as in every scene.
+struct Wall {
+  double normal[3];
+  double d;
+};
+inline std::vector<Wall> CrowdWalls(int n) {
+  const double l = CrowdHalfWidth(n);
+  return {{{1, 0, 0}, -l}, {{-1, 0, 0}, -l}, {{0, 1, 0}, -l}, {{0, -1, 0}, -l}};
 }
 
 // The state of one top as every engine can give it.
@@ -150,12 +197,147 @@ struct Monitor {
   }
 };
 
-// Command line shared by the peers: --n N --duration T --dt DT --setting NAME
+// The crowd's pair monitor, updated every step inside the timed loop: which pairs of tops touch
+// (a sphere of one within kTouchGap of a sphere of the other) and which tops touch a wall, by a
+// sort-and-sweep along x (a top reaches at most a2 + R2 = 21 mm from its centre of mass): about
+// 2 us per step for the crowd of 64 (0.03 us per body-step; measured on its own, 2026-12-02),
+// 0.3-1 % of the peers' step there.
+class PairMonitor {
+ public:
+  PairMonitor(int n, std::vector<Wall> walls)
+      : n_(n), walls_(std::move(walls)), touched_(static_cast<size_t>(n) * n, 0),
+        wall_previous_(static_cast<size_t>(n) * walls_.size(), 0), order_(n), x_(n) {
+    for (int i = 0; i < n; ++i) order_[i] = i;
+  }
+
+  void Update(const std::vector<TopState>& tops) {
+    // centres of the two spheres of every top: S + a e3
+    centres_.resize(tops.size());
+    for (size_t i = 0; i < tops.size(); ++i) {
+      const TopState& s = tops[i];
+      const double w = s.quat[0], x = s.quat[1], y = s.quat[2], z = s.quat[3];
+      const double n2 = w * w + x * x + y * y + z * z;
+      const double e3[3] = {2 * (x * z + w * y) / n2, 2 * (y * z - w * x) / n2, 1 - 2 * (x * x + y * y) / n2};
+      for (int k = 0; k < 3; ++k) {
+        centres_[i].big[k] = s.pos[k] + kA1 * e3[k];
+        centres_[i].peg[k] = s.pos[k] + kA2 * e3[k];
+      }
+      x_[i] = s.pos[0];
+      const double reach = std::fabs(s.pos[0]) > std::fabs(s.pos[1]) ? std::fabs(s.pos[0]) : std::fabs(s.pos[1]);
+      if (reach > max_coordinate) max_coordinate = reach;
+    }
+    // insertion sort by x: the order changes little from one step to the next
+    for (int a = 1; a < n_; ++a) {
+      const int v = order_[a];
+      int b = a - 1;
+      while (b >= 0 && x_[order_[b]] > x_[v]) {
+        order_[b + 1] = order_[b];
+        --b;
+      }
+      order_[b + 1] = v;
+    }
+    constexpr double kReach = 2.0 * (kA2 + kR2) + kTouchGap;
+    current_.clear();
+    for (int a = 0; a < n_; ++a) {
+      const int i = order_[a];
+      for (int b = a + 1; b < n_ && x_[order_[b]] - x_[i] <= kReach; ++b) {
+        const int j = order_[b];
+        const double dx = tops[i].pos[0] - tops[j].pos[0], dy = tops[i].pos[1] - tops[j].pos[1],
+                     dz = tops[i].pos[2] - tops[j].pos[2];
+        if (dx * dx + dy * dy + dz * dz > kReach * kReach) continue;
+        if (Touch(centres_[i], centres_[j])) current_.push_back(i < j ? i * n_ + j : j * n_ + i);
+      }
+    }
+    std::sort(current_.begin(), current_.end());
+    if (!current_.empty()) ++touch_steps;
+    pair_touch_steps += static_cast<long>(current_.size());
+    if (static_cast<long>(current_.size()) > max_touching_pairs) max_touching_pairs = static_cast<long>(current_.size());
+    for (long key : current_) {
+      if (!std::binary_search(previous_.begin(), previous_.end(), key)) ++pair_onsets;
+      if (!touched_[key]) {
+        touched_[key] = 1;
+        ++pairs_touched;
+      }
+    }
+    previous_.swap(current_);
+    // walls
+    bool any_wall = false;
+    for (int i = 0; i < n_; ++i) {
+      for (size_t w = 0; w < walls_.size(); ++w) {
+        const Wall& wall = walls_[w];
+        const double* c[2] = {centres_[i].big, centres_[i].peg};
+        const double r[2] = {kR1, kR2};
+        // the centre of mass farther than a2 + R2 from the wall: no sphere reaches it
+        const double* p = tops[i].pos;
+        bool touch = false;
+        if (wall.normal[0] * p[0] + wall.normal[1] * p[1] + wall.normal[2] * p[2] - wall.d <= 0.5 * kReach)
+          for (int k = 0; k < 2; ++k)
+            touch = touch || wall.normal[0] * c[k][0] + wall.normal[1] * c[k][1] + wall.normal[2] * c[k][2] -
+                                     wall.d - r[k] <= kTouchGap;
+        char& previous = wall_previous_[i * walls_.size() + w];
+        if (touch && !previous) ++wall_onsets;
+        any_wall = any_wall || touch;
+        previous = touch;
+      }
+    }
+    if (any_wall) ++wall_touch_steps;
+  }
+
+  // the JSON fields (without braces), for PrintResult's extra
+  std::string Json() const {
+    return "\"touch_gap\": " + std::to_string(kTouchGap) + ", \"touch_steps\": " + std::to_string(touch_steps) +
+           ", \"pair_touch_steps\": " + std::to_string(pair_touch_steps) +
+           ", \"pair_onsets\": " + std::to_string(pair_onsets) +
+           ", \"pairs_touched\": " + std::to_string(pairs_touched) +
+           ", \"max_touching_pairs\": " + std::to_string(max_touching_pairs) +
+           ", \"wall_onsets\": " + std::to_string(wall_onsets) +
+           ", \"wall_touch_steps\": " + std::to_string(wall_touch_steps) +
+           ", \"max_coordinate\": " + std::to_string(max_coordinate);
+  }
+
+  long touch_steps = 0;        // steps with at least one touching pair
+  long pair_touch_steps = 0;   // touching pairs summed over the steps
+  long pair_onsets = 0;        // a pair touches that did not touch in the step before
+  long pairs_touched = 0;      // distinct pairs that touched at some step
+  long max_touching_pairs = 0; // most pairs touching in one step
+  long wall_onsets = 0;        // a top touches a wall that it did not touch in the step before
+  long wall_touch_steps = 0;   // steps with at least one top touching a wall
+  double max_coordinate = 0.0; // largest |x| or |y| of a centre of mass (inside the arena: < its half-width)
+
+ private:
+  struct Centres {
+    double big[3], peg[3];
+  };
+  static bool Touch(const Centres& p, const Centres& q) {
+    const double* cp[2] = {p.big, p.peg};
+    const double* cq[2] = {q.big, q.peg};
+    const double r[2] = {kR1, kR2};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const double dx = cp[a][0] - cq[b][0], dy = cp[a][1] - cq[b][1], dz = cp[a][2] - cq[b][2];
+        const double reach = r[a] + r[b] + kTouchGap;
+        if (dx * dx + dy * dy + dz * dz <= reach * reach) return true;
+      }
+    return false;
+  }
+  int n_;
+  std::vector<Wall> walls_;
+  std::vector<char> touched_, wall_previous_;
+  std::vector<int> order_;
+  std::vector<double> x_;
+  std::vector<Centres> centres_;
+  std::vector<long> current_, previous_;
+};
+
+// Command line shared by the peers: --n N --duration T --dt DT --setting NAME --scene tops|crowd
 struct Args {
   int n = 1;
   double duration = kDuration;
   double dt = kDt;
   std::string setting;
+  std::string scene = "tops";  // tops: n independent tops (StartOf); crowd: CrowdStartOf, walls
+  bool crowd() const { return scene == "crowd"; }
+  Start StartOf(int i) const { return crowd() ? CrowdStartOf(i, n) : tippe_top::StartOf(i, n); }
 };
 
 // settings: the names the program accepts, the first is the default
@@ -170,15 +352,17 @@ inline Args ParseArgs(int argc, char** argv, const std::vector<std::string>& set
     else if (k == "--duration" && has_value) a.duration = std::atof(argv[++i]);
     else if (k == "--dt" && has_value) a.dt = std::atof(argv[++i]);
     else if (k == "--setting" && has_value) a.setting = argv[++i];
+    else if (k == "--scene" && has_value) a.scene = argv[++i];
     else ok = false;
   }
   bool known = false;
   for (const std::string& s : settings) known = known || s == a.setting;
-  if (!ok || !known || a.n < 1 || a.duration <= 0.0 || a.dt <= 0.0) {
+  const bool scene_ok = a.scene == "tops" || a.scene == "crowd";
+  if (!ok || !known || !scene_ok || a.n < 1 || a.duration <= 0.0 || a.dt <= 0.0) {
     std::string names;
     for (const std::string& s : settings) names += (names.empty() ? "" : " | ") + s;
-    std::fprintf(stderr, "usage: %s [--n N >= 1] [--duration S] [--dt S] [--setting %s]\n", argv[0],
-                 names.c_str());
+    std::fprintf(stderr, "usage: %s [--n N >= 1] [--duration S] [--dt S] [--setting %s] [--scene tops | crowd]\n",
+                 argv[0], names.c_str());
     std::exit(2);
   }
   return a;
@@ -188,6 +372,13 @@ inline long StepsOf(const Args& a) { return std::lround(a.duration / a.dt); }
 
 // CPU seconds of this process (all threads; the engines step on one thread here)
 inline double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// peak resident set of this process [KiB] (Linux: ru_maxrss is in KiB)
+inline long PeakRssKb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
 
 inline std::string Json(double v) {
   if (!std::isfinite(v)) return "null";
@@ -211,9 +402,12 @@ inline std::vector<Monitor> MonitorsFor(const std::vector<TopState>& initial) {
 // when n = 1); "inverted_tops" counts the tops of the n with theta > 150 deg at some time;
 // "max_excursion" is the largest excursion of any top (they cannot have met if it stays below
 // kSpacing / 2 - R1).
+// "peak_rss_kb" is this process's peak resident set (getrusage ru_maxrss); "extra" holds more
+// fields (the crowd's pair monitor), without braces.
 inline void PrintResult(const char* engine, const std::string& version, const std::string& settings,
                         const Args& a, long steps, double cpu_s, const std::vector<Monitor>& monitors,
-                        const std::vector<TopState>& initial, const std::vector<TopState>& final_state) {
+                        const std::vector<TopState>& initial, const std::vector<TopState>& final_state,
+                        const std::string& extra = "") {
   double e0 = 0.0, e1 = 0.0;
   int inverted = 0;
   bool finite = true;
@@ -231,12 +425,13 @@ inline void PrintResult(const char* engine, const std::string& version, const st
       "\"duration\": %s, \"steps\": %ld, \"cpu_s\": %s, \"inverts\": %s, \"theta_max\": %s, "
       "\"t_theta_above_2_4\": %s, \"t_inverted\": %s, \"t_peg_touchdown\": %s, \"theta_final\": %s, "
       "\"z_final\": %s, \"energy_initial\": %s, \"energy_final\": %s, \"inverted_tops\": %d, "
-      "\"max_excursion\": %s, \"finite\": %s}\n",
+      "\"max_excursion\": %s, \"finite\": %s, \"scene\": \"%s\", \"peak_rss_kb\": %ld%s%s}\n",
       engine, version.c_str(), settings.c_str(), a.n, Json(a.dt).c_str(), Json(a.duration).c_str(), steps,
       Json(cpu_s).c_str(), m.t_inverted >= 0.0 ? "true" : "false", Json(m.theta_max).c_str(),
       JsonTime(m.t_theta_24).c_str(), JsonTime(m.t_inverted).c_str(), JsonTime(m.t_peg_touchdown).c_str(),
       Json(Theta(final_state[0])).c_str(), Json(final_state[0].pos[2]).c_str(), Json(e0).c_str(),
-      Json(e1).c_str(), inverted, Json(excursion).c_str(), finite ? "true" : "false");
+      Json(e1).c_str(), inverted, Json(excursion).c_str(), finite ? "true" : "false", a.scene.c_str(),
+      PeakRssKb(), extra.empty() ? "" : ", ", extra.c_str());
 }
 
 }  // namespace tippe_top
