@@ -265,9 +265,56 @@ void ContactSolver::Solve(const ContactProblem& problem, const SolverOptions& op
   SolvePrevalidated(problem, options, lambda, statistics);
 }
 
+void BlockContactProblem::Resize(int m) {
+  const std::size_t n = static_cast<std::size_t>(m);
+  if (laws.size() == n) return;
+  laws.resize(n);
+  G.resize(n * n);
+  c.resize(n);
+}
+
 void ContactSolver::SolvePrevalidated(const ContactProblem& problem, const SolverOptions& options,
                                       Eigen::VectorXd* lambda, SolverStatistics* statistics) {
-  const std::size_t m = problem.contacts.size();
+  // the dense problem in padded blocks (zeros beyond each contact's dimension)
+  const int m = static_cast<int>(problem.contacts.size());
+  blocks_.Resize(m);
+  block_lambda_.resize(static_cast<std::size_t>(m));
+  for (int i = 0; i < m; ++i) {
+    const ContactBlock& a = problem.contacts[static_cast<std::size_t>(i)];
+    const int da = ContactDimension(a.law);
+    blocks_.laws[static_cast<std::size_t>(i)] = a.law;
+    Eigen::Vector4d& ci = blocks_.c[static_cast<std::size_t>(i)];
+    Eigen::Vector4d& li = block_lambda_[static_cast<std::size_t>(i)];
+    ci.setZero();
+    li.setZero();
+    for (int k = 0; k < da; ++k) {
+      ci[k] = problem.c[a.offset + k];
+      li[k] = (*lambda)[a.offset + k];
+    }
+    for (int j = 0; j < m; ++j) {
+      const ContactBlock& b = problem.contacts[static_cast<std::size_t>(j)];
+      const int db = ContactDimension(b.law);
+      Eigen::Matrix4d& block = blocks_.G[static_cast<std::size_t>(i * m + j)];
+      block.setZero();
+      for (int k = 0; k < db; ++k) {
+        for (int l = 0; l < da; ++l) block(l, k) = problem.G(a.offset + l, b.offset + k);
+      }
+    }
+  }
+  SolvePrevalidated(blocks_, options, &block_lambda_, statistics);
+  for (int i = 0; i < m; ++i) {
+    const ContactBlock& a = problem.contacts[static_cast<std::size_t>(i)];
+    for (int k = 0; k < work_[static_cast<std::size_t>(i)].dim; ++k) {
+      (*lambda)[a.offset + k] = block_lambda_[static_cast<std::size_t>(i)][k];
+    }
+  }
+}
+
+void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
+                                      const SolverOptions& options,
+                                      std::vector<Eigen::Vector4d>* lambda,
+                                      SolverStatistics* statistics) {
+  const std::size_t m = problem.laws.size();
   statistics->friction_projected.assign(m, false);
   statistics->normal_projected.assign(m, false);
   statistics->iterations = 0;
@@ -287,16 +334,16 @@ void ContactSolver::SolvePrevalidated(const ContactProblem& problem, const Solve
 
   for (std::size_t i = 0; i < m; ++i) {
     const ContactWork& w = work_[i];
-    // Λ_i = A_iΛ̂_i (47)
-    for (int k = 0; k < w.dim; ++k) (*lambda)[w.offset + k] = w.scale[k] * lambda_hat_[i][k];
+    // Λ_i = A_iΛ̂_i (47); Λ̂_i is zero beyond the contact's dimension
+    (*lambda)[i] = w.scale.cwiseProduct(lambda_hat_[i]);
     statistics->normal_projected[i] = w.normal_projected;
     statistics->friction_projected[i] = w.friction_projected;
   }
 }
 
-void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& options,
-                            const Eigen::VectorXd& lambda) {
-  const std::size_t m = problem.contacts.size();
+void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOptions& options,
+                            const std::vector<Eigen::Vector4d>& lambda) {
+  const std::size_t m = problem.laws.size();
   work_.resize(m);
   g_hat_.resize(m * m);
   c_hat_.resize(m);
@@ -306,9 +353,8 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
   previous_change_.resize(m);
 
   for (std::size_t i = 0; i < m; ++i) {
-    const ContactLaw& law = problem.contacts[i].law;
+    const ContactLaw& law = problem.laws[i];
     ContactWork& w = work_[i];
-    w.offset = problem.contacts[i].offset;
     w.dim = ContactDimension(law);
     w.mu = law.mu;
     // with R̄ = 0 every law degenerates to the coulomb disk
@@ -321,12 +367,12 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     w.normal_projected = false;
     w.friction_projected = false;
     w.friction_natural_step = false;
-    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), padded with zeros (scalar loops: dim ≤ 4)
+    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), zero beyond the dimension (scalar loops: dim ≤ 4)
     c_hat_[i].setZero();
     lambda_hat_[i].setZero();
     for (int k = 0; k < w.dim; ++k) {
-      c_hat_[i][k] = w.scale[k] * problem.c[w.offset + k];
-      lambda_hat_[i][k] = lambda[w.offset + k] / w.scale[k];
+      c_hat_[i][k] = w.scale[k] * problem.c[i][k];
+      lambda_hat_[i][k] = lambda[i][k] / w.scale[k];
     }
     change_[i].setZero();
     previous_change_[i].setZero();
@@ -335,12 +381,11 @@ void ContactSolver::Prepare(const ContactProblem& problem, const SolverOptions& 
     const ContactWork& wi = work_[i];
     for (std::size_t j = 0; j < m; ++j) {
       const ContactWork& wj = work_[j];
-      // G_ij padded with zeros, then Ĝ_ij = A_iᵀ G_ij A_j (41)
-      Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
-      for (int k = 0; k < wj.dim; ++k) {
-        for (int l = 0; l < wi.dim; ++l) block(l, k) = problem.G(wi.offset + l, wj.offset + k);
-      }
-      g_hat_[i * m + j] = TransformBlock(block, wi.scale, wj.scale);
+      // Ĝ_ij = A_iᵀ G_ij A_j (41), zero beyond the dimensions
+      Eigen::Matrix4d& g = g_hat_[i * m + j];
+      g = TransformBlock(problem.G[i * m + j], wi.scale, wj.scale);
+      if (wi.dim < 4) g.bottomRows(4 - wi.dim).setZero();
+      if (wj.dim < 4) g.rightCols(4 - wj.dim).setZero();
     }
   }
   const double alpha = options.relaxation;

@@ -57,10 +57,15 @@ constexpr int kMaxIterations = 100;
 // From u = 2 (v ≤ 1/2) on the series replace the closed forms (51)-(52): at u = 2 both are
 // accurate to ~5e-16; the closed forms lose ~u² ulps, the series converge like v^{2j}.
 constexpr double kSeriesMaxV = 0.5;
-// Number of series terms for v ≤ 1/2, 1/8 and 1/128: the first neglected term is < 1e-17
-// relative there (tests: CoulombContensouBoundary.AgreesWithHighPrecision and
-// .BranchesAndSeriesSwitchesAreContinuous).
+// Number of series terms for v ≤ 1/2, 1/3, 1/4, 1/8 and 1/128: the first neglected term is
+// < 1e-17 relative there (tests: CoulombContensouBoundary.AgreesWithHighPrecision and
+// .BranchesAndSeriesSwitchesAreContinuous). The intermediate tiers only save work: a sliding
+// Tippe-Top's projections fall mostly on 1/8 < v ≤ 1/2.
 constexpr int kTermsFull = 24;
+constexpr int kTermsThird = 16;
+constexpr double kThirdMaxV = 1.0 / 3.0;
+constexpr int kTermsQuarter = 14;
+constexpr double kQuarterMaxV = 0.25;
 constexpr int kTermsMid = 10;
 constexpr double kMidMaxV = 0.125;
 constexpr int kTermsSmall = 5;
@@ -139,6 +144,8 @@ RimPoint RimClosedForm(double v) {
 RimPoint Rim(double v) {
   if (v <= kSmallMaxV) return RimSeries<kTermsSmall>(v);
   if (v <= kMidMaxV) return RimSeries<kTermsMid>(v);
+  if (v <= kQuarterMaxV) return RimSeries<kTermsQuarter>(v);
+  if (v <= kThirdMaxV) return RimSeries<kTermsThird>(v);
   if (v <= kSeriesMaxV) return RimSeries<kTermsFull>(v);
   return RimClosedForm(v);
 }

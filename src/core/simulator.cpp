@@ -21,6 +21,15 @@ std::vector<BodyState> Normalized(std::vector<BodyState> state) {
   return state;
 }
 
+// ½m|v_S|² + ½ωᵀΘω - m g·r_S of one body, with the operations of MechanicalEnergy (scene.cpp), so
+// that a sum of these that is finite is an Energy() that is finite.
+double BodyEnergy(const RigidBody& body, const Eigen::Vector3d& gravity,
+                  const Eigen::Vector3d& position, const Eigen::Vector3d& linear,
+                  const Eigen::Vector3d& angular) {
+  return 0.5 * body.mass * linear.squaredNorm() + 0.5 * angular.dot(body.inertia * angular) -
+         body.mass * gravity.dot(position);
+}
+
 // What (13) and the free velocities produced from one body's q_B, u_B.
 bool MidpointIsFinite(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
                       const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
@@ -133,6 +142,7 @@ void Simulator::Step(StepStatistics* out) {
   stats.explicit_gyroscopic_unsafe = false;
   stats.gap_correction = 0.0;
   stats.gap_correction_energy = 0.0;
+  stats.gap_correction_undone = false;
   stats.state_finite = !diverged_;
   if (diverged_) return;
 
@@ -166,7 +176,16 @@ void Simulator::Step(StepStatistics* out) {
                                             options_.time_step, w.angular_free);
     }
   }
-  if (!finite || !ComputeEndState()) {
+  finite = finite && ComputeEndState();
+  // the end state's energy, summed as Energy() sums it: a state whose energy overflows is as lost
+  // as one with an inf (ComputeEndState checks |v|² and |ω|², not m, Θ and g·r_S)
+  double energy = 0.0;
+  for (std::size_t b = 0; finite && b < state_.size(); ++b) {
+    const BodyStep& w = body_step_[b];
+    energy += BodyEnergy(scene_.bodies[b], scene_.gravity, w.position_end, w.linear_end,
+                         w.angular_end);
+  }
+  if (!finite || !std::isfinite(energy)) {
     // the step is not taken: state, time and contact report stay as they were (SetState clears
     // the warm start this step may have written)
     diverged_ = true;
@@ -182,7 +201,31 @@ void Simulator::Step(StepStatistics* out) {
     s.orientation = w.orientation_end;
   }
   time_ += options_.time_step;
-  if (options_.gap_correction) CorrectGaps(&stats);
+  if (options_.gap_correction) {
+    CorrectGaps(&stats);
+    // CorrectGaps runs after the checks above: a correction that made anything non-finite (a body
+    // set far beyond every scale, e.g. 1e300 m deep: NaN rotations, lifts whose norm or energy
+    // overflows) is undone, back to the end state checked above, which body_step_ still holds
+    // (CorrectGaps moves state_ only, so this costs no copy and no allocation)
+    bool corrected_finite =
+        std::isfinite(stats.gap_correction) && std::isfinite(stats.gap_correction_energy);
+    energy = 0.0;
+    for (std::size_t b = 0; corrected_finite && b < state_.size(); ++b) {
+      const BodyState& s = state_[b];
+      corrected_finite = s.position.allFinite() && s.orientation.coeffs().allFinite();
+      energy += BodyEnergy(scene_.bodies[b], scene_.gravity, s.position, s.linear_velocity,
+                           s.angular_velocity);
+    }
+    if (!corrected_finite || !std::isfinite(energy)) {
+      for (std::size_t b = 0; b < state_.size(); ++b) {
+        state_[b].position = body_step_[b].position_end;
+        state_[b].orientation = body_step_[b].orientation_end;
+      }
+      stats.gap_correction = 0.0;
+      stats.gap_correction_energy = 0.0;
+      stats.gap_correction_undone = true;
+    }
+  }
   // the report: γ_E = W(q_M)ᵀu_E, the velocity the contact law constrained
   contacts_.resize(closed_count_);
   for (std::size_t i = 0; i < closed_count_; ++i) {
@@ -263,10 +306,56 @@ const ContactState* Simulator::FindContact(int collider) const {
 
 void Simulator::SetState(const std::vector<BodyState>& state) {
   ValidateState(scene_, state);
+  RequireFiniteEnergy(state);
   state_ = Normalized(state);
   diverged_ = false;
   memory_.clear();
   contacts_.clear();
+}
+
+void Simulator::RequireFiniteEnergy(const std::vector<BodyState>& state) const {
+  // the terms as MechanicalEnergy computes them (and |v|², |ω|², which a step checks); the bounds
+  // named are those of these operations
+  constexpr double kMax = std::numeric_limits<double>::max();
+  auto reject = [](std::size_t b, const char* field, const std::string& what) {
+    std::ostringstream message;
+    message << "state[" << b << "]." << field << ": " << what;
+    throw std::invalid_argument(message.str());
+  };
+  double energy = 0.0;
+  for (std::size_t b = 0; b < state.size(); ++b) {
+    const RigidBody& body = scene_.bodies[b];
+    const BodyState& s = state[b];
+    const double linear = 0.5 * body.mass * s.linear_velocity.squaredNorm();
+    const double angular = 0.5 * s.angular_velocity.dot(body.inertia * s.angular_velocity);
+    const double potential = body.mass * scene_.gravity.dot(s.position);
+    std::ostringstream range;
+    range.precision(3);
+    if (!std::isfinite(linear)) {
+      range << "the kinetic energy ½m|v_S|² overflows; |v_S| must be below "
+            << std::sqrt(kMax / std::max(1.0, 0.5 * body.mass)) << " m/s";
+      reject(b, "linear_velocity", range.str());
+    }
+    // |ω|² too, as the step checks it (with a small Θ, ½ωᵀΘω can be finite where |ω|² is not)
+    if (!std::isfinite(angular) || !std::isfinite(s.angular_velocity.squaredNorm())) {
+      const double largest = body.inertia.cwiseAbs().rowwise().sum().maxCoeff();
+      range << "the kinetic energy ½ωᵀΘω overflows; |ω| must be below about "
+            << std::sqrt(kMax / std::max(1.0, largest)) << " rad/s";
+      reject(b, "angular_velocity", range.str());
+    }
+    if (!std::isfinite(potential)) {
+      range << "the potential energy -m g·r_S overflows; |r_S| along g must be below "
+            << kMax / (std::max(1.0, body.mass) * scene_.gravity.norm()) << " m";
+      reject(b, "position", range.str());
+    }
+    energy += BodyEnergy(body, scene_.gravity, s.position, s.linear_velocity, s.angular_velocity);
+    if (!std::isfinite(energy)) {
+      range << "state: the mechanical energy Σ ½m|v_S|² + ½ωᵀΘω - m g·r_S overflows at state["
+            << b << "] (each body's terms are finite, their sum is not); it must stay below "
+            << kMax << " J in magnitude";
+      throw std::invalid_argument(range.str());
+    }
+  }
 }
 
 void Simulator::SetTime(double time) {

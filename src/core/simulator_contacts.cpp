@@ -98,9 +98,12 @@ void Simulator::AddPairContacts(int first, int second) {
                                    : Eigen::Vector3d::UnitX();
   // (12): g(q_M) ≤ 0, or ≤ kContactHysteresis while the pair had a closed contact in the last
   // step (of any feature: a face that tilts past the flat tolerance hands over to its corners)
-  const auto pair_memory = memory_.find(ContactKey(first, second, kPairFeature));
+  const std::uint64_t pair_key = ContactKey(first, second, kPairFeature);
+  const auto found = memory_.find(pair_key);
+  // a pointer: the features' try_emplace below may rehash (iterators die, references do not)
+  ContactMemory* pair_memory = found != memory_.end() ? &found->second : nullptr;
   const bool pair_was_closed =
-      pair_memory != memory_.end() && pair_memory->second.closed_step == step_count_ - 1;
+      pair_memory != nullptr && pair_memory->closed_step == step_count_ - 1;
   const double max_gap = pair_was_closed ? kContactHysteresis : 0.0;
   bool any_closed = false;
   for (int k = 0; k < count; ++k) {
@@ -153,7 +156,8 @@ void Simulator::AddPairContacts(int first, int second) {
   }
   // the pair's own memory: closed in this step
   if (any_closed) {
-    memory_[ContactKey(first, second, kPairFeature)].closed_step = step_count_;
+    if (pair_memory == nullptr) pair_memory = &memory_.try_emplace(pair_key).first->second;
+    pair_memory->closed_step = step_count_;
   }
 }
 
@@ -171,12 +175,10 @@ void Simulator::BuildIslands(StepStatistics* stats) {
              closed_[i].report.body_b == closed_[0].report.body_b;
   }
   if (single) {
-    islands_.push_back(Island{0, static_cast<int>(closed_count_), 0});
+    islands_.push_back(Island{0, static_cast<int>(closed_count_)});
     island_contacts_.resize(closed_count_);
     for (std::size_t i = 0; i < closed_count_; ++i) {
       island_contacts_[i] = static_cast<int>(i);
-      closed_[i].offset = islands_[0].size;
-      islands_[0].size += closed_[i].report.dimension;
     }
     body_step_[static_cast<std::size_t>(closed_[0].report.body_b)].island = 0;
     island_bodies_.resize(1);
@@ -211,18 +213,14 @@ void Simulator::BuildIslands(StepStatistics* stats) {
     island.first_contact = start;
     start += island.contact_count;
     island.contact_count = 0;
-    island.size = 0;
   }
   island_contacts_.resize(closed_count_);
   for (std::size_t i = 0; i < closed_count_; ++i) {
-    ClosedContact& c = closed_[i];
-    const int root = Root(&union_find_, c.report.body_b);
+    const int root = Root(&union_find_, closed_[i].report.body_b);
     Island& island =
         islands_[static_cast<std::size_t>(body_step_[static_cast<std::size_t>(root)].island)];
     island_contacts_[static_cast<std::size_t>(island.first_contact + island.contact_count++)] =
         static_cast<int>(i);
-    c.offset = island.size;
-    island.size += c.report.dimension;
   }
   // every body of an island knows it; the bodies grouped by island
   for (std::size_t b = 0; b < body_step_.size(); ++b) {
@@ -362,6 +360,26 @@ bool Simulator::LevelOnPoints(std::size_t first, std::size_t last, const Contact
   double lambda[kMaxPoints] = {};
   Eigen::Vector3d dr = Eigen::Vector3d::Zero();
   Eigen::Vector3d dtheta = Eigen::Vector3d::Zero();
+  // A buried body, its highest point here deeper than the diameter of its collider's bounding
+  // sphere (so all of it is under the surface; e.g. a die reset 10 m deep), is first lifted
+  // straight along the common normal until that point is at -slop (the lift of the group rule,
+  // which opens no contact), and only the rest, at most the body's size, is levelled. Without
+  // it the sweeps give the lift to the points listed first (a box's upper corners, only 2h
+  // shallower than its lower face) and drain their λ back to 0 in O(depth / h) sweeps:
+  // kLevellingSweeps left the die 10 m deep turned by 33° (0.67 rad of Δθ), where the exact
+  // solution is the straight lift. Ordinary penetrations (far shallower than a diameter: the
+  // sweeps converge up to depths of ~40 h for a die) level exactly as before.
+  double highest = gap[0];
+  bool one_normal = true;  // a plane: every gap changes by exactly the lift
+  for (int p = 1; p < n; ++p) {
+    highest = std::max(highest, gap[p]);
+    one_normal = one_normal && normal[p] == normal[0];
+  }
+  const double diameter = 2.0 * bounding_radius_[static_cast<std::size_t>(
+                                    closed_[first].report.collider_b)];
+  if (one_normal && -highest > diameter && -highest > kGapCorrectionSlop) {
+    dr = (-highest - kGapCorrectionSlop) * normal[0];
+  }
   for (int sweep = 0; sweep < kLevellingSweeps; ++sweep) {
     for (int p = 0; p < n; ++p) {
       const double residual =

@@ -13,26 +13,10 @@ constexpr double kGyroscopicRoundOff = 4.0 * std::numeric_limits<double>::epsilo
 
 }  // namespace
 
-ContactProblem& Simulator::ProblemOfSize(int size) {
-  const std::size_t n = static_cast<std::size_t>(size);
-  if (problems_.size() <= n) {
-    problems_.resize(n + 1);
-    lambdas_.resize(n + 1);
-  }
-  ContactProblem& problem = problems_[n];
-  if (problem.G.rows() != size) {
-    problem.G.setZero(size, size);
-    problem.c.setZero(size);
-    problem.contacts.reserve(n);
-    lambdas_[n].setZero(size);
-  }
-  return problem;
-}
-
-void Simulator::ApplyImpulses(const Island& island, const Eigen::VectorXd& lambda) {
+void Simulator::ApplyImpulses(const Island& island) {
   // (18) the contact part M⁻¹ Σ W_i Λ_i, per body
-  for (int k = island_body_start_[static_cast<std::size_t>(&island - islands_.data())];
-       k < island_body_start_[static_cast<std::size_t>(&island - islands_.data()) + 1]; ++k) {
+  const std::size_t index = static_cast<std::size_t>(&island - islands_.data());
+  for (int k = island_body_start_[index]; k < island_body_start_[index + 1]; ++k) {
     BodyStep& w = body_step_[static_cast<std::size_t>(island_bodies_[static_cast<std::size_t>(k)])];
     w.linear_contact.setZero();
     w.angular_contact.setZero();
@@ -40,9 +24,8 @@ void Simulator::ApplyImpulses(const Island& island, const Eigen::VectorXd& lambd
   for (int k = 0; k < island.contact_count; ++k) {
     const ClosedContact& c = closed_[static_cast<std::size_t>(
         island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
-    Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
-    // (element loops: Eigen's dynamic-size segments cost more than the copy at 1-4 entries)
-    for (int d = 0; d < c.report.dimension; ++d) percussion[d] = lambda[c.offset + d];
+    // Λ_k is zero beyond the contact's dimension
+    const Eigen::Vector4d& percussion = lambda_[static_cast<std::size_t>(k)];
     // W Λ on a side: sign (LᵀΛ, JᵀΛ)
     const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
     for (const ContactSide& side : c.jacobian.side) {
@@ -59,29 +42,30 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
   const std::size_t index = static_cast<std::size_t>(&island - islands_.data());
   const int body_begin = island_body_start_[index];
   const int body_end = island_body_start_[index + 1];
+  const int m = island.contact_count;
   auto contact = [this, &island](int k) -> ClosedContact& {
     return closed_[static_cast<std::size_t>(
         island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
   };
-  ContactProblem& problem = ProblemOfSize(island.size);
-  Eigen::VectorXd& lambda = lambdas_[static_cast<std::size_t>(island.size)];
-  problem.contacts.clear();
-  for (int k = 0; k < island.contact_count; ++k) {
+  problem_.Resize(m);
+  if (lambda_.size() < static_cast<std::size_t>(m)) lambda_.resize(static_cast<std::size_t>(m));
+  for (int k = 0; k < m; ++k) {
     const ClosedContact& c = contact(k);
-    problem.contacts.push_back(ContactBlock{c.offset, c.report.law});
-    // warm start from the previous step's percussions (zero if the contact was open then)
+    problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
+    // warm start from the previous step's percussions (zero if the contact was open then; the
+    // memory is zero beyond the contact's dimension)
     const bool warm = c.memory->closed_step == step_count_ - 1;
-    for (int d = 0; d < c.report.dimension; ++d) {
-      lambda[c.offset + d] = warm ? c.memory->percussion[d] : 0.0;
-    }
+    lambda_[static_cast<std::size_t>(k)] =
+        warm ? c.memory->percussion : Eigen::Vector4d::Zero().eval();
   }
 
-  // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on
-  for (int i = 0; i < island.contact_count; ++i) {
+  // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on, in padded blocks
+  for (int i = 0; i < m; ++i) {
     const ClosedContact& a = contact(i);
-    for (int j = i; j < island.contact_count; ++j) {
+    for (int j = i; j < m; ++j) {
       const ClosedContact& b = contact(j);
-      Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+      Eigen::Matrix4d& block = problem_.G[static_cast<std::size_t>(i * m + j)];
+      block.setZero();
       for (const ContactSide& s : a.jacobian.side) {
         if (s.body < 0) continue;
         for (const ContactSide& t : b.jacobian.side) {
@@ -90,16 +74,9 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
                                      b.jacobian, t);
         }
       }
-      const int da = a.report.dimension;
-      const int db = b.report.dimension;
-      if (da == 4 && db == 4) {
-        problem.G.block<4, 4>(a.offset, b.offset) = block;
-        if (j != i) problem.G.block<4, 4>(b.offset, a.offset) = block.transpose();
-        continue;
-      }
-      problem.G.block(a.offset, b.offset, da, db) = block.topLeftCorner(da, db);
-      if (j != i)
-        problem.G.block(b.offset, a.offset, db, da) = block.topLeftCorner(da, db).transpose();
+      if (j != i) problem_.G[static_cast<std::size_t>(j * m + i)] = block.transpose();
+      // a body far away can overflow G: not solved
+      if (!block.allFinite()) return false;
     }
   }
 
@@ -109,7 +86,8 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
   int passes = 0;
   for (int pass = 0; pass < kMaxGyroscopicPasses; ++pass) {
     // (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B
-    for (int k = 0; k < island.contact_count; ++k) {
+    bool finite = true;
+    for (int k = 0; k < m; ++k) {
       const ClosedContact& c = contact(k);
       Eigen::Vector4d gamma_free = Eigen::Vector4d::Zero();
       for (const ContactSide& side : c.jacobian.side) {
@@ -117,17 +95,18 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
         const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
         gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
       }
-      const Eigen::Vector4d ci = gamma_free + c.report.law.restitution * c.gamma_begin;
-      for (int d = 0; d < c.report.dimension; ++d) problem.c[c.offset + d] = ci[d];
+      Eigen::Vector4d& ci = problem_.c[static_cast<std::size_t>(k)];
+      ci = gamma_free + c.report.law.restitution * c.gamma_begin;
+      finite = finite && ci.allFinite();
     }
-    // a diverged state (huge ω) can overflow c (and G, with a body far away): not solved
-    if (!problem.c.allFinite() || !problem.G.allFinite()) return false;
+    // a diverged state (huge ω) can overflow c: not solved
+    if (!finite) return false;
     // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
     // options were validated when set
-    solver_.SolvePrevalidated(problem, options_.solver, &lambda, &island_stats_);
+    solver_.SolvePrevalidated(problem_, options_.solver, &lambda_, &island_stats_);
     total_iterations += island_stats_.iterations;
     passes = pass + 1;
-    ApplyImpulses(island, lambda);
+    ApplyImpulses(island);
     if (!implicit) {
       for (int k = body_begin; k < body_end; ++k) {
         const std::size_t b = static_cast<std::size_t>(island_bodies_[static_cast<std::size_t>(k)]);
@@ -176,8 +155,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     stats->solver.friction_projected[i] =
         island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
-    c.report.percussion.setZero();
-    for (int d = 0; d < c.report.dimension; ++d) c.report.percussion[d] = lambda[c.offset + d];
+    c.report.percussion = lambda_[static_cast<std::size_t>(k)];
     c.memory->tangent1 = c.report.frame.tangent1;
     c.memory->percussion = c.report.percussion;
     c.memory->closed_step = step_count_;

@@ -224,6 +224,7 @@ void Simulator::SetBodyStates(const std::vector<int>& bodies,
     next[static_cast<std::size_t>(b)] = states[i];
   }
   ValidateState(scene_, next);
+  RequireFiniteEnergy(next);  // the bodies not set have a finite energy: they stepped to it
   for (int b : bodies) next[static_cast<std::size_t>(b)].orientation.normalize();
   // forget the contacts of the moved bodies only
   auto involved = [&](int collider) {

@@ -199,6 +199,19 @@ struct ContactProblem {
   std::vector<ContactBlock> contacts;
 };
 
+/// The same inclusion (17) in padded 4 × 4 blocks, the form the Simulator assembles straight from
+/// W and M⁻¹ (no dense matrix, no offsets): contact i has the law `laws[i]`, c_i = c[i] and
+/// G_ij = G[i·m + j] (row-major over the m contacts); the entries of a block beyond the contacts'
+/// dimensions (ContactDimension) are ignored, as are those of c_i and of the warm start.
+struct BlockContactProblem {
+  std::vector<ContactLaw> laws;
+  std::vector<Eigen::Matrix4d> G;  ///< m × m blocks, symmetric: G[j·m + i] = G[i·m + j]ᵀ
+  std::vector<Eigen::Vector4d> c;
+  int size() const { return static_cast<int>(laws.size()); }
+  /// m contacts; allocates only when m exceeds every earlier size
+  void Resize(int m);
+};
+
 /// Throws std::invalid_argument unless: the contacts are laid out as ContactProblem says, G is
 /// n × n and c has n entries, every entry is finite, every diagonal entry of G is > 0 (a zero
 /// diagonal means a force direction that moves nothing), and every law has finite μ ≥ 0 and
@@ -236,7 +249,6 @@ struct ContactWork {
   /// R̄ of the friction set in the iterated coordinates: R̄/a_τ, i.e. the law's R̄ on an original
   /// set (37) and 1 on A⁻¹B_F, A⁻¹C_F (40); unused by sphere (S_F) and the disk
   double set_rbar = 0.0;
-  int offset = 0;
   int dim = 1;
   FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
   bool normal_projected = false;
@@ -264,12 +276,17 @@ class ContactSolver {
   /// contact on a body, c checked finite, Λ its own warm start). Bad input is undefined here.
   void SolvePrevalidated(const ContactProblem& problem, const SolverOptions& options,
                          Eigen::VectorXd* lambda, SolverStatistics* statistics);
+  /// The same on the block form: `lambda` holds one padded Λ_i per contact (size m; the warm
+  /// start on entry, the solution on return, zero beyond the contact's dimension). The problem
+  /// must satisfy what ValidateContactProblem asks of the equivalent dense problem.
+  void SolvePrevalidated(const BlockContactProblem& problem, const SolverOptions& options,
+                         std::vector<Eigen::Vector4d>* lambda, SolverStatistics* statistics);
 
  private:
   template <SolverType kType>
   void Iterate(const SolverOptions& options, SolverStatistics* statistics);
-  void Prepare(const ContactProblem& problem, const SolverOptions& options,
-               const Eigen::VectorXd& lambda);
+  void Prepare(const BlockContactProblem& problem, const SolverOptions& options,
+               const std::vector<Eigen::Vector4d>& lambda);
 
   // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
   // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last two changes |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact
@@ -277,6 +294,9 @@ class ContactSolver {
   std::vector<internal::ContactWork> work_;
   std::vector<Eigen::Matrix4d> g_hat_;
   std::vector<Eigen::Vector4d> c_hat_, lambda_hat_, lambda_next_, change_, previous_change_;
+  // a dense ContactProblem and its Λ in block form (the dense overloads only)
+  BlockContactProblem blocks_;
+  std::vector<Eigen::Vector4d> block_lambda_;
 };
 
 }  // namespace nonsmooth_sim

@@ -44,6 +44,8 @@
 //  - A step that meets a non-finite value (the explicit gyroscopic term far outside its safe range
 //    blows up) is not taken: StepStatistics::state_finite = false, state and time stay at the last
 //    finite step, and the simulator stays stopped until SetState(). It never throws for that.
+//    The end state's energy overflowing counts as non-finite; the gap correction, after that
+//    check, is undone where it makes anything non-finite (StepStatistics::gap_correction_undone).
 //  - The index set (12) uses g ≤ 0, and g ≤ kContactHysteresis (1 nm) for a contact that was
 //    closed in the last step: a body resting at round-off-level positive gaps stays carried.
 //  - With the explicit gyroscopic term, a step without contact gains ½Δt²·aᵀΘa; with contact,
@@ -145,7 +147,10 @@ struct SimulatorOptions {
   /// A body resting on several points of one static collider (a face lying flat, box corners, a
   /// capsule on its side) is levelled instead: the smallest rigid displacement, translation and
   /// rotation about S in the metric of M, that brings every one of those points to ≥ -slop
-  /// (LevelOnPoints; otherwise a multi-point rest keeps a corner microns deep for ever).
+  /// (LevelOnPoints; otherwise a multi-point rest keeps a corner microns deep for ever). A body
+  /// buried there (its highest point deeper than its collider's bounding diameter, e.g. a die
+  /// reset 10 m under the ground) is first lifted straight along the normal until that point is at
+  /// -kGapCorrectionSlop, and only the rest is levelled: a level body stays level.
   /// A position projection outside the paper's scheme that bounds the penetration drift of
   /// rolling contacts; false = the paper's scheme exactly. It adds -m g·Δr of potential energy,
   /// reported in StepStatistics::gap_correction_energy. For the Tippe-Top on the ground this is a
@@ -209,8 +214,15 @@ struct StepStatistics {
   /// the squared norms of the end velocities), i.e. the scheme diverged. The step was not taken:
   /// state, time and contact report stay at the last finite step, and every later Step() returns at
   /// once with state_finite = false (nothing advances) until SetState() replaces the state
-  /// (Simulator::diverged()).
+  /// (Simulator::diverged()). The mechanical energy of the end state (Energy(), as MechanicalEnergy
+  /// sums it) overflowing counts as non-finite too.
   bool state_finite = true;
+  /// true: SimulatorOptions::gap_correction produced a non-finite value in this step (a position or
+  /// orientation, the energy, or gap_correction / gap_correction_energy overflowing; only for
+  /// bodies set through the core absurdly far into the ground, e.g. 1e300 m) and was undone: the
+  /// state is the step's end state without the correction, as with gap_correction = false, and
+  /// gap_correction = gap_correction_energy = 0. The step is taken (state_finite stays true).
+  bool gap_correction_undone = false;
 };
 
 class Simulator {
@@ -239,11 +251,14 @@ class Simulator {
 
   /// Replaces the state (validated; quaternions normalised) and clears the warm start, the contact
   /// report and diverged(). Throws std::invalid_argument and leaves everything unchanged on bad
-  /// input.
+  /// input: a non-finite value, a zero quaternion, or a state whose Energy() would overflow (a
+  /// term ½m|v_S|², ½ωᵀΘω, -m g·r_S, their sum, |v_S|² or |ω|²; the message names the field and
+  /// its bound). Any other finite state is accepted, far beyond the starts' bounds too.
   void SetState(const std::vector<BodyState>& state);
   /// Replaces the states of the bodies `bodies` (no repeats) by `states` (one each; validated,
-  /// quaternions normalised) and forgets only their contacts (warm starts, tangent frames,
-  /// report): every other body steps on exactly as if nothing had been set. Clears diverged().
+  /// quaternions normalised, energy bounded as in SetState) and forgets only their contacts (warm
+  /// starts, tangent frames, report): every other body steps on exactly as if nothing had been
+  /// set. Clears diverged().
   /// Throws std::out_of_range or std::invalid_argument and changes nothing on bad input.
   void SetBodyStates(const std::vector<int>& bodies, const std::vector<BodyState>& states);
   void SetTime(double time);
@@ -329,7 +344,6 @@ class Simulator {
     Eigen::Vector4d gamma_begin; // γ^B = W(q_M)ᵀu_B
     std::uint64_t key = 0;       // (pair, feature) of the warm start and the tangent frame
     ContactMemory* memory = nullptr;  // memory_[key] (node pointers stay valid on rehash)
-    int offset = 0;              // first component in its island's stacked Λ, c, G
   };
   // The closed contacts of one body with one static collider, or of two bodies, at q_E.
   struct GapGroup {
@@ -343,7 +357,6 @@ class Simulator {
   struct Island {
     int first_contact = 0;  // into island_contacts_
     int contact_count = 0;
-    int size = 0;           // Σ dimensions
   };
 
   void Initialize();
@@ -364,8 +377,8 @@ class Simulator {
   // collider, end geometry `end`); false if fewer than two of them are found at q_E
   bool LevelOnPoints(std::size_t first, std::size_t last, const ContactGeometry* end, int count,
                      StepStatistics* stats);
-  void ApplyImpulses(const Island& island, const Eigen::VectorXd& lambda);
-  ContactProblem& ProblemOfSize(int size);
+  // (18): the contact impulses M⁻¹ Σ W_iΛ_i of the island's contacts from lambda_
+  void ApplyImpulses(const Island& island);
   // the law of a pair with the overrides of SetFrictionSet
   ContactLaw PairLaw(int first, int second) const;
   // collider_pose_ of a collider on a body at q_M (end = false) or q_E (end = true).
@@ -413,10 +426,15 @@ class Simulator {
   std::vector<GapGroup> gap_groups_;
   // the pair function's output (a member: eight ContactGeometry are not free to construct)
   std::array<ContactGeometry, kMaxPairContacts> geometry_;
-  // contact problem and percussions per stacked size n (index n), sized on first use
-  std::vector<ContactProblem> problems_;
-  std::vector<Eigen::VectorXd> lambdas_;
+  // the contact problem of the island being solved, in blocks (contact k of the island is block
+  // k), and its percussions; they only grow
+  BlockContactProblem problem_;
+  std::vector<Eigen::Vector4d> lambda_;
   SolverStatistics island_stats_;
+  // Throws std::invalid_argument (naming the body, the field and its allowed range) unless the
+  // mechanical energy of `state` (MechanicalEnergy) and each of its terms are finite: SetState and
+  // SetBodyStates, after ValidateState.
+  void RequireFiniteEnergy(const std::vector<BodyState>& state) const;
 };
 
 }  // namespace nonsmooth_sim
