@@ -71,6 +71,7 @@ Simulator::Simulator(Scene scene, SimulatorOptions options)
     : scene_(std::move(scene)), options_(options) {
   ValidateScene(scene_);
   ValidateSimulatorOptions(options_);
+  RequireFiniteEnergy(scene_, scene_.initial_state);
   state_ = Normalized(scene_.initial_state);
   Initialize();
 }
@@ -306,14 +307,14 @@ const ContactState* Simulator::FindContact(int collider) const {
 
 void Simulator::SetState(const std::vector<BodyState>& state) {
   ValidateState(scene_, state);
-  RequireFiniteEnergy(state);
+  RequireFiniteEnergy(scene_, state);
   state_ = Normalized(state);
   diverged_ = false;
   memory_.clear();
   contacts_.clear();
 }
 
-void Simulator::RequireFiniteEnergy(const std::vector<BodyState>& state) const {
+void Simulator::RequireFiniteEnergy(const Scene& scene, const std::vector<BodyState>& state) {
   // the terms as MechanicalEnergy computes them (and |v|², |ω|², which a step checks); the bounds
   // named are those of these operations
   constexpr double kMax = std::numeric_limits<double>::max();
@@ -324,11 +325,11 @@ void Simulator::RequireFiniteEnergy(const std::vector<BodyState>& state) const {
   };
   double energy = 0.0;
   for (std::size_t b = 0; b < state.size(); ++b) {
-    const RigidBody& body = scene_.bodies[b];
+    const RigidBody& body = scene.bodies[b];
     const BodyState& s = state[b];
     const double linear = 0.5 * body.mass * s.linear_velocity.squaredNorm();
     const double angular = 0.5 * s.angular_velocity.dot(body.inertia * s.angular_velocity);
-    const double potential = body.mass * scene_.gravity.dot(s.position);
+    const double potential = body.mass * scene.gravity.dot(s.position);
     std::ostringstream range;
     range.precision(3);
     if (!std::isfinite(linear)) {
@@ -345,10 +346,10 @@ void Simulator::RequireFiniteEnergy(const std::vector<BodyState>& state) const {
     }
     if (!std::isfinite(potential)) {
       range << "the potential energy -m g·r_S overflows; |r_S| along g must be below "
-            << kMax / (std::max(1.0, body.mass) * scene_.gravity.norm()) << " m";
+            << kMax / (std::max(1.0, body.mass) * scene.gravity.norm()) << " m";
       reject(b, "position", range.str());
     }
-    energy += BodyEnergy(body, scene_.gravity, s.position, s.linear_velocity, s.angular_velocity);
+    energy += BodyEnergy(body, scene.gravity, s.position, s.linear_velocity, s.angular_velocity);
     if (!std::isfinite(energy)) {
       range << "state: the mechanical energy Σ ½m|v_S|² + ½ωᵀΘω - m g·r_S overflows at state["
             << b << "] (each body's terms are finite, their sum is not); it must stay below "

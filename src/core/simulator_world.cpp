@@ -107,6 +107,7 @@ int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state
     merged_state.push_back(s);
     merged_state.back().orientation.normalize();
   }
+  RequireFiniteEnergy(merged, merged_state);
   std::vector<Wrench> merged_wrench = wrench_;
   merged_wrench.resize(merged.bodies.size());
 
@@ -224,7 +225,7 @@ void Simulator::SetBodyStates(const std::vector<int>& bodies,
     next[static_cast<std::size_t>(b)] = states[i];
   }
   ValidateState(scene_, next);
-  RequireFiniteEnergy(next);  // the bodies not set have a finite energy: they stepped to it
+  RequireFiniteEnergy(scene_, next);  // the bodies not set have a finite energy: they stepped to it
   for (int b : bodies) next[static_cast<std::size_t>(b)].orientation.normalize();
   // forget the contacts of the moved bodies only
   auto involved = [&](int collider) {

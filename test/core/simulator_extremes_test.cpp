@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -176,6 +177,44 @@ TEST(SimulatorExtremes, SetStateRefusesAStateWhoseEnergyOverflows) {
   EXPECT_NO_THROW(sim.SetState({bounded}));
 }
 
+// Finding 2 through the other doors: a scene whose start's energy overflows is refused by the
+// constructor, and a model whose state's energy overflows by AddBodies (the world unchanged).
+TEST(SimulatorExtremes, ConstructorAndAddBodiesRefuseAnOverflowingEnergy) {
+  Scene far = MakeTippeTopScene();
+  far.initial_state[0].position.z() = 2.8089115958841757e307;
+  try {
+    Simulator sim(far, SimulatorOptions{});
+    ADD_FAILURE() << "constructed, Energy() = " << sim.Energy();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("state[0].position"), std::string::npos) << e.what();
+  }
+
+  Simulator sim(MakeTippeTopScene(), SimulatorOptions{});
+  sim.Step();
+  const std::vector<BodyState> before = sim.state();
+  Scene model = MakeTippeTopScene();
+  model.colliders.erase(std::remove_if(model.colliders.begin(), model.colliders.end(),
+                                       [](const Collider& c) { return c.body == kWorld; }),
+                        model.colliders.end());
+  for (RigidBody& body : model.bodies) body.name = "second_" + body.name;
+  for (Collider& collider : model.colliders) collider.name = "second_" + collider.name;
+  BodyState fast = model.initial_state[0];
+  fast.linear_velocity = Eigen::Vector3d(1e155, 0.0, 0.0);
+  try {
+    sim.AddBodies(model, {fast});
+    ADD_FAILURE() << "added, Energy() = " << sim.Energy();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("state[1].linear_velocity"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(sim.state().size(), 1u);
+  EXPECT_TRUE(SameBits(sim.state(), before));
+  // the same model at a bounded speed is added
+  fast.linear_velocity = Eigen::Vector3d(1.0, 0.0, 0.0);
+  EXPECT_NO_THROW(sim.AddBodies(model, {fast}));
+  EXPECT_EQ(sim.state().size(), 2u);
+}
+
 // Finding 2, in a step: a state of finite energy that steps to one whose energy overflows (a
 // 100 kg ball at 1e153 m/s pushed to 2e153 m/s: |v|² is finite, ½m|v|² is not) is the reported
 // fault, not a finite step to Energy() = inf.
@@ -205,8 +244,7 @@ TEST(SimulatorExtremes, AStepToAnOverflowingEnergyIsNotTaken) {
 
 // Finding 3 (finding_deep_lift_energy.bin): a body set absurdly deep was lifted with
 // gap_correction_energy (or gap_correction, the lift's norm) = inf in a finite step. The lift is
-// undone now; a state whose energy overflows from the start (AddBodies does not bound it) is the
-// reported fault.
+// undone now.
 TEST(SimulatorExtremes, ALiftThatOverflowsIsUndone) {
   // the lift group rule (one point per sphere) and the levelling (the die's points)
   BodyState top = TippeTopInitialState(TippeTopParameters{}, TippeTopInitialConditions{});
@@ -227,17 +265,14 @@ TEST(SimulatorExtremes, ALiftThatOverflowsIsUndone) {
     EXPECT_EQ(stats.gap_correction_energy, 0.0) << c;
     EXPECT_TRUE(SameBits(sim.state(), uncorrected.state())) << c;
   }
-  // the reproducer's state, 1.56e308 m deep: -m g·r_S overflows, SetState refuses it (above),
-  // AddBodies takes it, and the step reports the fault
+  // the reproducer's state, 1.56e308 m deep: -m g·r_S overflows; SetState (above) and AddBodies
+  // (ConstructorAndAddBodiesRefuseAnOverflowingEnergy) refuse it
   Simulator sim(DieScene(), SimulatorOptions{});
   Scene model = MakeTippeTopScene();
   model.colliders.pop_back();  // the ground is the world's
   BodyState deepest = TippeTopInitialState(TippeTopParameters{}, TippeTopInitialConditions{});
   deepest.position.z() = -1.5589370091066778e308;
-  sim.AddBodies(model, {deepest});
-  const std::vector<BodyState> before = sim.state();
-  const StepStatistics stats = sim.Step();
-  ExpectFiniteOrFault(sim, stats, before, "1.56e308 m deep");
+  EXPECT_THROW(sim.AddBodies(model, {deepest}), std::invalid_argument);
 }
 
 // Finding 4: a level die reset 10 m (and 1 km) under the ground came up turned by 33° (25°) in

@@ -218,10 +218,7 @@ std::vector<std::string> ContactNames(const Simulator& sim, FuzzedDataProvider& 
 void Step(World& w, FuzzedDataProvider& in) {
   const int n = in.ConsumeIntegralInRange<int>(1, 8);
   for (int k = 0; k < n && w.steps < kMaxSteps; ++k, ++w.steps) {
-    // within_bounds = true whatever was set: fuzz_support.h's allowance for states beyond the
-    // node's bounds (a NaN from the gap correction reported one step late, Energy() = inf or
-    // gap_correction_energy = inf after a finite step) is not taken any more
-    fuzz::StepUnderContract(*w.sim, "~step", /*within_bounds=*/true);
+    fuzz::StepUnderContract(*w.sim, "~step");
   }
 }
 

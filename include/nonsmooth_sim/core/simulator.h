@@ -227,7 +227,8 @@ struct StepStatistics {
 
 class Simulator {
  public:
-  /// Validates scene and options (std::invalid_argument); starts from scene.initial_state at t=0.
+  /// Validates scene and options (std::invalid_argument; also a start whose energy overflows, as
+  /// SetState); starts from scene.initial_state at t=0.
   Simulator(Scene scene, SimulatorOptions options);
 
   /// Advances by one time step (not after a non-finite step: see StepStatistics::state_finite).
@@ -282,7 +283,8 @@ class Simulator {
   /// kWorld for static ones) with the start states `state` (one per model body), between two
   /// steps. The bodies already there keep their state, warm starts and tangent frames. The merged
   /// scene is validated like the constructor's (unique names, ranges; also a non-empty body name
-  /// must not be in use): throws std::invalid_argument and changes nothing on bad input. The
+  /// must not be in use; a state whose energy overflows, as SetState): throws
+  /// std::invalid_argument and changes nothing on bad input. The
   /// model's initial_state and gravity are not used. Returns the index of the first new body (the
   /// new bodies are scene().bodies[first ...], the new colliders appended in order).
   int AddBodies(const Scene& model, const std::vector<BodyState>& state);
@@ -432,9 +434,9 @@ class Simulator {
   std::vector<Eigen::Vector4d> lambda_;
   SolverStatistics island_stats_;
   // Throws std::invalid_argument (naming the body, the field and its allowed range) unless the
-  // mechanical energy of `state` (MechanicalEnergy) and each of its terms are finite: SetState and
-  // SetBodyStates, after ValidateState.
-  void RequireFiniteEnergy(const std::vector<BodyState>& state) const;
+  // mechanical energy of `state` in `scene` (MechanicalEnergy) and each of its terms are finite:
+  // the constructor, AddBodies, SetState and SetBodyStates, after ValidateState.
+  static void RequireFiniteEnergy(const Scene& scene, const std::vector<BodyState>& state);
 };
 
 }  // namespace nonsmooth_sim
