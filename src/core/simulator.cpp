@@ -203,15 +203,18 @@ void Simulator::Step(StepStatistics* out) {
   }
   time_ += options_.time_step;
   if (options_.gap_correction) {
+    gap_moved_ = false;
     CorrectGaps(&stats);
     // CorrectGaps runs after the checks above: a correction that made anything non-finite (a body
     // set far beyond every scale, e.g. 1e300 m deep: NaN rotations, lifts whose norm or energy
     // overflows) is undone, back to the end state checked above, which body_step_ still holds
-    // (CorrectGaps moves state_ only, so this costs no copy and no allocation)
+    // (CorrectGaps moves state_ only, so this costs no copy and no allocation); checked only if
+    // it moved a body
     bool corrected_finite =
-        std::isfinite(stats.gap_correction) && std::isfinite(stats.gap_correction_energy);
+        !gap_moved_ ||
+        (std::isfinite(stats.gap_correction) && std::isfinite(stats.gap_correction_energy));
     energy = 0.0;
-    for (std::size_t b = 0; corrected_finite && b < state_.size(); ++b) {
+    for (std::size_t b = 0; gap_moved_ && corrected_finite && b < state_.size(); ++b) {
       const BodyState& s = state_[b];
       corrected_finite = s.position.allFinite() && s.orientation.coeffs().allFinite();
       energy += BodyEnergy(scene_.bodies[b], scene_.gravity, s.position, s.linear_velocity,

@@ -313,6 +313,7 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
     const double mass_a = g.body_a >= 0 ? inertia_[static_cast<std::size_t>(g.body_a)].mass : 0.0;
     const double share_b = g.body_a >= 0 ? mass_a / (mass_a + mass_b) : 1.0;
     const Eigen::Vector3d move_b = (share_b * push) * g.normal;
+    gap_moved_ = true;
     state_[static_cast<std::size_t>(g.body_b)].position += move_b;
     stats->gap_correction = std::max(stats->gap_correction, move_b.norm());
     stats->gap_correction_energy -= mass_b * scene_.gravity.dot(move_b);
@@ -392,6 +393,7 @@ bool Simulator::LevelOnPoints(std::size_t first, std::size_t last, const Contact
     }
   }
   // apply: translate r_S, rotate about S by the world rotation Δθ; velocities kept
+  gap_moved_ = true;
   s.position += dr;
   const double angle = dtheta.norm();
   if (angle > 0.0) {

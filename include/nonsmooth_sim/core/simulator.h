@@ -437,6 +437,8 @@ class Simulator {
   // mechanical energy of `state` in `scene` (MechanicalEnergy) and each of its terms are finite:
   // the constructor, AddBodies, SetState and SetBodyStates, after ValidateState.
   static void RequireFiniteEnergy(const Scene& scene, const std::vector<BodyState>& state);
+  // CorrectGaps moved a body in this step (then Step checks what it did)
+  bool gap_moved_ = false;
 };
 
 }  // namespace nonsmooth_sim
