@@ -117,7 +117,6 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     total_.busy_wall += busy;
     LogSummaryIfDue();  // ~duration reached in this chunk
     if (failed || done == req.steps) break;
-    OutboxWake();
     lock.unlock();
     while (waiting_services_.load() > 0) std::this_thread::yield();
     lock.lock();
@@ -128,7 +127,6 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     }
     if (interrupted != nullptr) break;
   }
-  OutboxFlush();  // ~step returns once its /tf and ~contacts are published
   PublishClock(/*flush=*/true);
   res.sim_time = sim_->time();
   res.stamp = StampOf(sim_->time());

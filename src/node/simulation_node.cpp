@@ -1,6 +1,8 @@
 // The node: set-up, the integrator thread, publishing, diagnostics. Services: node_services.cpp.
 #include "nonsmooth_sim/node/simulation_node.h"
 
+#include <rosgraph_msgs/Clock.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -68,8 +70,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       frames_(MakeFrameNames(urdf_.scene, parameters_.world_frame)),
       nh_(nh),
       private_nh_(private_nh),
-      updater_(nh, private_nh),
-      outbox_(kOutboxSlots) {
+      updater_(nh, private_nh) {
   sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
   BuildModels();
   paused_ = parameters_.paused;
@@ -141,7 +142,6 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
         "lookups and rviz will not match them; set /use_sim_time true before they start (the "
         "launch files' default, use_sim_time:=true)");
   }
-  publisher_ = std::thread(&SimulationNode::PublishOutbox, this);
   integrator_ = std::thread(&SimulationNode::Run, this);
 }
 
@@ -152,13 +152,6 @@ SimulationNode::~SimulationNode() {
   }
   wake_.notify_all();
   if (integrator_.joinable()) integrator_.join();
-  {
-    // the publisher thread publishes what is left, then returns
-    std::lock_guard<std::mutex> lock(outbox_mutex_);
-    outbox_stop_ = true;
-  }
-  outbox_filled_.notify_all();
-  if (publisher_.joinable()) publisher_.join();
 }
 
 std::unique_lock<std::mutex> SimulationNode::LockForService() {
@@ -198,7 +191,6 @@ void SimulationNode::Run() {
       done = RunChunk(budget, start + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(kMaxChunkWall)));
       PublishClock(/*flush=*/paused_);
-      OutboxWake();  // what the chunk left in the outbox goes out now
     }
     if (factor > 0.0 && done >= budget) {
       const auto period = std::chrono::duration<double>(1.0 / parameters_.wall_update_rate);
@@ -303,7 +295,6 @@ void SimulationNode::Fault(const std::string& what) {
 }
 
 void SimulationNode::Pause(const char* reason) {
-  OutboxFlush();  // the running time includes publishing what the run stepped
   if (!paused_) run_wall_ += Seconds(Clock::now() - unpaused_at_);
   paused_ = true;
   PublishClock(/*flush=*/true);
@@ -365,8 +356,7 @@ void SimulationNode::PublishDue() {
   if (due[1]) PublishContacts();
   if (due[2]) PublishState();
   if (due[3]) PublishMarkers();
-  PublishClock(/*flush=*/false);  // into the same outbox slot as this instant's /tf
-  OutboxPush();
+  PublishClock(/*flush=*/false);
   const double spent = Seconds(Clock::now() - start);
   period_.publish_wall += spent;
   total_.publish_wall += spent;
@@ -377,17 +367,15 @@ void SimulationNode::PublishTransforms() {
   if (stamp <= last_tf_stamp_) return;  // tf2 warns about repeated stamps
   last_tf_stamp_ = stamp;
   if (tf_pub_.getNumSubscribers() == 0) return;
-  OutboxSlot& slot = OutboxBack();
-  FillTransforms(*sim_, frames_, stamp, &slot.tf);
-  slot.has_tf = true;
+  FillTransforms(*sim_, frames_, stamp, &tf_msg_);
+  tf_pub_.publish(tf_msg_);
 }
 
 void SimulationNode::PublishContacts() {
   const ros::Time stamp = StampOf(sim_->time());
   if (contacts_pub_.getNumSubscribers() > 0) {
-    OutboxSlot& slot = OutboxBack();
-    FillContacts(*sim_, last_step_, frames_, &slot.contacts);
-    slot.has_contacts = true;
+    FillContacts(*sim_, last_step_, frames_, &contacts_msg_);
+    contacts_pub_.publish(contacts_msg_);
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
   FirstContacts(*sim_, &first_contact_);
@@ -420,91 +408,11 @@ void SimulationNode::PublishClock(bool flush) {
   if (!last_clock_stamp_.isZero() && stamp <= last_clock_stamp_) return;  // monotone
   const Clock::time_point now = Clock::now();
   if (!flush && Seconds(now - last_clock_wall_) < 1.0 / parameters_.clock_rate) return;
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  clock_pub_.publish(clock);
   last_clock_stamp_ = stamp;
   last_clock_wall_ = now;
-  // after the /tf and ~contacts stepped before it: through the outbox, or once it is empty
-  if (flush) {
-    OutboxFlush();
-    rosgraph_msgs::Clock clock;
-    clock.clock = stamp;
-    clock_pub_.publish(clock);
-  } else {
-    OutboxSlot& slot = OutboxBack();
-    if (!slot.has_tf && !slot.has_contacts && OutboxEmpty()) {
-      // nothing waits before it: at once, without waking the publisher thread
-      rosgraph_msgs::Clock clock;
-      clock.clock = stamp;
-      clock_pub_.publish(clock);
-      return;
-    }
-    slot.clock.clock = stamp;
-    slot.has_clock = true;
-    OutboxPush();
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// the outbox: /tf, ~contacts and /clock in order through the publisher thread
-
-SimulationNode::OutboxSlot& SimulationNode::OutboxBack() {
-  std::unique_lock<std::mutex> lock(outbox_mutex_);
-  if (outbox_count_ == kOutboxSlots) {
-    // the publisher thread is a whole ring behind: wait for it (flow control, nothing dropped)
-    if (outbox_sleeping_) outbox_filled_.notify_one();
-    outbox_freed_.wait(lock, [this] { return outbox_count_ < kOutboxSlots; });
-  }
-  return outbox_[(outbox_head_ + outbox_count_) % kOutboxSlots];
-}
-
-bool SimulationNode::OutboxEmpty() {
-  std::lock_guard<std::mutex> lock(outbox_mutex_);
-  return outbox_count_ == 0;
-}
-
-void SimulationNode::OutboxPush() {
-  std::lock_guard<std::mutex> lock(outbox_mutex_);
-  if (outbox_count_ == kOutboxSlots) return;  // nothing was filled (OutboxBack would have waited)
-  const OutboxSlot& slot = outbox_[(outbox_head_ + outbox_count_) % kOutboxSlots];
-  if (!slot.has_tf && !slot.has_contacts && !slot.has_clock) return;
-  ++outbox_count_;
-  if (outbox_sleeping_ && outbox_count_ >= kOutboxWakeBatch) outbox_filled_.notify_one();
-}
-
-void SimulationNode::OutboxWake() {
-  std::lock_guard<std::mutex> lock(outbox_mutex_);
-  if (outbox_sleeping_ && outbox_count_ > 0) outbox_filled_.notify_one();
-}
-
-void SimulationNode::OutboxFlush() {
-  std::unique_lock<std::mutex> lock(outbox_mutex_);
-  if (outbox_count_ == 0) return;
-  if (outbox_sleeping_) outbox_filled_.notify_one();
-  outbox_freed_.wait(lock, [this] { return outbox_count_ == 0; });
-}
-
-void SimulationNode::PublishOutbox() {
-  std::unique_lock<std::mutex> lock(outbox_mutex_);
-  while (true) {
-    if (outbox_count_ == 0) {
-      if (outbox_stop_) return;
-      outbox_sleeping_ = true;
-      outbox_filled_.wait(lock);
-      outbox_sleeping_ = false;
-      continue;
-    }
-    OutboxSlot& slot = outbox_[outbox_head_];
-    lock.unlock();
-    // the slot is this thread's until it is counted out below
-    if (slot.has_tf) tf_pub_.publish(slot.tf);
-    if (slot.has_contacts) contacts_pub_.publish(slot.contacts);
-    if (slot.has_clock) clock_pub_.publish(slot.clock);
-    slot.has_tf = slot.has_contacts = slot.has_clock = false;
-    lock.lock();
-    outbox_head_ = (outbox_head_ + 1) % kOutboxSlots;
-    --outbox_count_;
-    // wakes a flush, or a stepping thread that found the ring full once half of it is free
-    if (outbox_count_ == 0 || outbox_count_ == kOutboxSlots / 2) outbox_freed_.notify_all();
-  }
 }
 
 void SimulationNode::AfterReset() {

@@ -5,17 +5,12 @@
 // ~real_time_factor, or as fast as possible for 0); services and the diagnostics wall timer run
 // in the ROS spinner. One mutex guards the Simulator: the integrator holds it for a bounded chunk
 // of steps, so every service applies its change between two steps. A service that waits for the
-// mutex is served before the next chunk (LockForService). /tf, ~contacts and /clock are built by
-// whoever steps (into a ring of reused messages, the outbox) and published in that order by a
-// publisher thread of their own, so that roscpp's serialization and socket writes do not hold up
-// the stepping; a pause, the end of ~step and every other /clock publish wait until the outbox is
-// empty. The other topics are published by whoever steps.
+// mutex is served before the next chunk (LockForService).
 #ifndef NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
 #define NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
-#include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
 
 #include <atomic>
@@ -90,22 +85,6 @@ class SimulationNode {
     double start = 0.0;
     double end = 0.0;  ///< +inf: until cleared
   };
-  /// One instant's /tf and ~contacts messages, built by the stepping thread and published by the
-  /// publisher thread. Reused: their vectors and strings keep their capacity.
-  struct OutboxSlot {
-    bool has_tf = false;
-    bool has_contacts = false;
-    bool has_clock = false;
-    tf2_msgs::TFMessage tf;
-    ContactInfoArray contacts;
-    rosgraph_msgs::Clock clock;
-  };
-  /// Slots in the outbox ring: the stepping thread waits only when the publisher thread is this
-  /// many instants behind (flow control, as with a blocking socket).
-  static constexpr std::size_t kOutboxSlots = 64;
-  /// The stepping thread wakes a sleeping publisher thread once this many slots are filled (or at
-  /// the end of a chunk, or on a flush): one wake-up per batch rather than per message.
-  static constexpr std::size_t kOutboxWakeBatch = 8;
   /// |force| and |torque| of ~apply_body_wrench at most this [N], [N m].
   static constexpr double kMaxExternalForce = 1e6;
   /// ~apply_body_wrench keeps at most this many wrenches at once (a bound on the work per step).
@@ -149,21 +128,6 @@ class SimulationNode {
   void PublishMarkers();
   void PublishClock(bool flush);
   void AfterReset();
-
-  // --- outbox (the producer side with mutex_ held)
-  /// The slot to fill next, emptied; waits while the ring is full.
-  OutboxSlot& OutboxBack();
-  /// Hands the slot of OutboxBack() to the publisher thread (when it holds a message); wakes it
-  /// once kOutboxWakeBatch slots wait.
-  void OutboxPush();
-  /// Wakes the publisher thread if it sleeps with messages waiting (end of a chunk).
-  void OutboxWake();
-  /// Returns once every pushed message has been published (pause, end of ~step, shutdown).
-  void OutboxFlush();
-  /// Nothing pushed waits to be published.
-  bool OutboxEmpty();
-  /// The publisher thread.
-  void PublishOutbox();
 
   // --- services (service thread)
   bool OnPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -257,6 +221,8 @@ class SimulationNode {
   std::int64_t faults_ = 0;  ///< failed steps since start
   bool summary_due_ = false;        ///< ~duration reached: LogSummaryIfDue logs the run
   // reused messages
+  tf2_msgs::TFMessage tf_msg_;
+  ContactInfoArray contacts_msg_;
   SimulationState state_msg_;
   visualization_msgs::MarkerArray markers_msg_;
   geometry_msgs::WrenchStamped wrench_msg_;
@@ -282,18 +248,6 @@ class SimulationNode {
   } snapshot_;
   double previous_running_wall_ = 0.0;
   double previous_running_sim_time_ = 0.0;
-
-  // --- the outbox: a ring of kOutboxSlots; outbox_mutex_ guards the counters, a slot belongs to
-  // the producer from OutboxBack to OutboxPush and to the publisher thread while it is counted
-  std::vector<OutboxSlot> outbox_;
-  std::mutex outbox_mutex_;
-  std::condition_variable outbox_filled_;  ///< the publisher thread waits on it
-  std::condition_variable outbox_freed_;   ///< a full ring and OutboxFlush wait on it
-  std::size_t outbox_head_ = 0;     ///< the oldest pushed slot
-  std::size_t outbox_count_ = 0;    ///< pushed slots not yet published
-  bool outbox_sleeping_ = false;    ///< the publisher thread waits for work
-  bool outbox_stop_ = false;
-  std::thread publisher_;
 
   std::thread integrator_;  // last: started when everything above exists
 };
