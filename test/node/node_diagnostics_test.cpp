@@ -50,8 +50,9 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
     return false;
   };
   ASSERT_TRUE(diagnostics.WaitForMessage(after_the_run, 20.0));
-  // each period that ran (the die never touches: a step is a free flight of about a microsecond)
-  // runs far faster than real time, and factor × running wall time adds up to the run's sim time
+  // factor × running wall time of each period that ran adds up to the run's sim time (a factor
+  // averaged over the paused rest of the period falls short by the period's paused share; no bound
+  // on the factor itself: that is the machine's speed, and under AddressSanitizer it is below 1)
   double advanced = 0.0;
   int periods_that_ran = 0;
   for (const auto& m : diagnostics.Messages()) {
@@ -60,7 +61,7 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
       if (Value(status, "running wall time in period [s]", &running) && running > 0.0 &&
           Value(status, "real-time factor", &factor)) {
         ++periods_that_ran;
-        EXPECT_GT(factor, 1.0) << "averaged over paused time?";
+        EXPECT_GT(factor, 0.0);
         advanced += factor * running;
       }
     }
@@ -90,7 +91,9 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
   EXPECT_GT(stepping, 0.0) << line;
   EXPECT_GE(publishing, 0.0) << line;
   EXPECT_GT(wall, 0.0) << line;
-  EXPECT_GT(summary_factor, 1.0) << line;
+  // the line's factor is its sim time over its running wall time (printed with 2 decimals, wall
+  // with 4 digits)
+  EXPECT_NEAR(summary_factor, t / wall, 0.005 + 1e-3 * t / wall) << line;
 }
 
 }  // namespace
