@@ -206,6 +206,22 @@ class Installed(unittest.TestCase):
         self.assertNotEqual(gone.returncode, 0, "the stale ~urdf_file is still set")
 
 
+def other_build_trees_with(program):
+    """The executables named `program` that rosrun would find below the package (ROOT) outside
+    BUILD_DIR: like rosrun, skipping ROOT/build/."""
+    found = []
+    for directory, subdirs, files in os.walk(ROOT):
+        real = os.path.realpath(directory)
+        if real == BUILD_DIR or real == os.path.join(os.path.realpath(ROOT), "build"):
+            subdirs[:] = []
+            continue
+        subdirs[:] = [d for d in subdirs if d != ".git"]
+        path = os.path.join(directory, program)
+        if program in files and os.access(path, os.X_OK):
+            found.append(os.path.relpath(path, ROOT))
+    return sorted(found)
+
+
 class Devel(unittest.TestCase):
     def setUp(self):
         self.work = tempfile.mkdtemp(prefix="nonsmooth_sim_devel_")
@@ -218,6 +234,12 @@ class Devel(unittest.TestCase):
     def test_rosrun_node(self):
         # rosrun skips everything below <package>/build/ (its find has ! -regex '<pkg>/build/'):
         # the default build directory is build-release/ for that reason (docs/building.md)
+        others = other_build_trees_with("nonsmooth_sim_node")
+        if others:
+            # rosrun finds every executable of that name below the package and asks which one
+            # (exit 127 without a terminal): e.g. build-asan/ next to build-release/
+            self.skipTest("rosrun cannot choose: other build trees hold nonsmooth_sim_node: " +
+                          ", ".join(others))
         self.shell.start_master()
         urdf = os.path.join(ROOT, "urdf", "tippe_top.urdf")
         node = self.shell.start(["rosrun", "nonsmooth_sim", "nonsmooth_sim_node",
