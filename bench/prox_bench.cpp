@@ -102,11 +102,27 @@ void BM_ProxExact(benchmark::State& state) {
   });
 }
 
+// exact, warm-started (the overload with a hint) from the foot point this input gave the previous
+// time round: the best case of a solver, whose iterates move a little between calls.
+void BM_ProxExactWarm(benchmark::State& state) {
+  static std::array<double, kInputCount> hints;
+  hints.fill(std::nan(""));
+  const std::array<Eigen::Vector3d, kInputCount>& inputs = Inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    auto result = nonsmooth_sim::ProxCoulombContensou(inputs[i], kRadius, kRbar, &hints[i]);
+    benchmark::DoNotOptimize(result);
+    i = (i + 1) & (kInputCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // Names as in FrictionSetName(): BM_Prox/coulomb, ..., BM_Prox/exact.
 BENCHMARK(BM_ProxCoulomb)->Name("BM_Prox/coulomb");
 BENCHMARK(BM_ProxCylinder)->Name("BM_Prox/cylinder");
 BENCHMARK(BM_ProxEllipsoid)->Name("BM_Prox/ellipsoid");
 BENCHMARK(BM_ProxSphere)->Name("BM_Prox/sphere");
 BENCHMARK(BM_ProxExact)->Name("BM_Prox/exact");
+BENCHMARK(BM_ProxExactWarm)->Name("BM_Prox/exact_warm");
 
 }  // namespace

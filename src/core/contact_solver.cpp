@@ -38,7 +38,9 @@ bool IsKnown(SolverType type) { return SolverTypeName(type) != "unknown"; }
 // coordinates the contact is iterated in (contact_solver.h, table of the iterated sets): Λ̂ = A⁻¹Λ
 // for sphere and, with map_drilling_sets, exact and cylinder; Λ otherwise. `set_rbar` is the R̄
 // of the iterated set: 1 for A⁻¹B_F and A⁻¹C_F, the law's R̄ for the original sets.
-Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, double set_rbar) {
+// `rim_hint`: the warm start of B_F's prox (ContactWork::rim_hint).
+Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, double set_rbar,
+                   double* rim_hint) {
   switch (set) {
     // C_F (54), (37); or A⁻¹C_F = C_F with R̄ = 1, (40)-(47)
     case FrictionSet::kCylinder: return ProxCylinder(z, radius, set_rbar);
@@ -47,7 +49,7 @@ Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z, double radius, dou
     // S_F = A⁻¹E_F (57)-(59), (43)
     case FrictionSet::kSphere: return ProxBall(z, radius);
     // B_F (51)-(53), (37); or A⁻¹B_F = B_F with R̄ = 1, (40)-(47)
-    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, set_rbar);
+    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, set_rbar, rim_hint);
     case FrictionSet::kCoulomb: break;  // 3-component contacts use the disk, see UpdateContact
   }
   const Prox2 disk = ProxDisk(z.head<2>(), radius);
@@ -83,10 +85,10 @@ Vector UpdateFriction(const Vector& lambda, const Vector& xi, const Vector& step
   return p.point;
 }
 
-// One contact: Λ̂_i^{ν+1} from Λ̂_i^ν and ξ̂_i = Σ_j Ĝ_ij Λ̂_j + ĉ_i.
+// One contact: Λ̂_i^{ν+1} from Λ̂_i^ν and ξ̂_i = Σ_j Ĝ_ij Λ̂_j + ĉ_i; `rim_hint` is w's.
 template <bool kModified>
 ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
-                            const Eigen::Vector4d& xi) {
+                            const Eigen::Vector4d& xi, double* rim_hint) {
   ContactUpdate update{Eigen::Vector4d::Zero(), false, false, false};
   // normal block {Λ_N ≥ 0}: (43) with r̂_i; (46) on the 1-D block has r̂ = α/Ĝ_NN and Q = 1
   const double r_normal = kModified ? w.r_normal : w.r_contact;
@@ -107,8 +109,8 @@ ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
     return update;
   }
   // (T1, T2, τ) on the law's set in the iterated coordinates (Λ̂ = A⁻¹Λ or Λ)
-  const auto set = [&w, radius](const Eigen::Vector3d& z) {
-    return ProxFriction(w.set, z, radius, w.set_rbar);
+  const auto set = [&w, radius, rim_hint](const Eigen::Vector3d& z) {
+    return ProxFriction(w.set, z, radius, w.set_rbar, rim_hint);
   };
   update.next.tail<3>() = UpdateFriction<kModified, Eigen::Vector3d>(
       lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected,
@@ -301,7 +303,7 @@ void ContactSolver::SolvePrevalidated(const ContactProblem& problem, const Solve
       }
     }
   }
-  SolvePrevalidated(blocks_, options, &block_lambda_, statistics);
+  SolvePrevalidated(blocks_, options, &block_lambda_, statistics, nullptr);
   for (int i = 0; i < m; ++i) {
     const ContactBlock& a = problem.contacts[static_cast<std::size_t>(i)];
     for (int k = 0; k < work_[static_cast<std::size_t>(i)].dim; ++k) {
@@ -313,7 +315,8 @@ void ContactSolver::SolvePrevalidated(const ContactProblem& problem, const Solve
 void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
                                       const SolverOptions& options,
                                       std::vector<Eigen::Vector4d>* lambda,
-                                      SolverStatistics* statistics) {
+                                      SolverStatistics* statistics,
+                                      std::vector<double>* rim_hints) {
   const std::size_t m = problem.laws.size();
   statistics->friction_projected.assign(m, false);
   statistics->normal_projected.assign(m, false);
@@ -323,7 +326,7 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
   statistics->converged = true;
   if (m == 0) return;
 
-  Prepare(problem, options, *lambda);
+  Prepare(problem, options, *lambda, rim_hints);
   switch (options.type) {
     case SolverType::kJacobi: Iterate<SolverType::kJacobi>(options, statistics); break;
     case SolverType::kModifiedJacobi:
@@ -338,11 +341,13 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
     (*lambda)[i] = w.scale.cwiseProduct(lambda_hat_[i]);
     statistics->normal_projected[i] = w.normal_projected;
     statistics->friction_projected[i] = w.friction_projected;
+    if (rim_hints != nullptr) (*rim_hints)[i] = w.rim_hint;
   }
 }
 
 void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOptions& options,
-                            const std::vector<Eigen::Vector4d>& lambda) {
+                            const std::vector<Eigen::Vector4d>& lambda,
+                            const std::vector<double>* rim_hints) {
   const std::size_t m = problem.laws.size();
   work_.resize(m);
   g_hat_.resize(m * m);
@@ -363,16 +368,24 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
     w.scale = ContactMapDiagonal(law, options);
     // B_F, C_F and E_F scale linearly along τ: A⁻¹ maps the set with R̄ to the one with R̄/a_τ
     // (exactly 1 where a_τ = R̄)
-    w.set_rbar = law.rbar / w.scale[3];
+    w.set_rbar = w.scale[3] == law.rbar ? 1.0 : law.rbar / w.scale[3];
     w.normal_projected = false;
     w.friction_projected = false;
     w.friction_natural_step = false;
-    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), zero beyond the dimension (scalar loops: dim ≤ 4)
+    w.rim_hint =
+        rim_hints != nullptr ? (*rim_hints)[i] : std::numeric_limits<double>::quiet_NaN();
+    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), zero beyond the dimension (scalar loops: dim ≤ 4);
+    // the absolute tolerance in Λ̂ coordinates. Divisions only where a_k ≠ 1 (x/1 = x exactly).
     c_hat_[i].setZero();
     lambda_hat_[i].setZero();
+    w.tolerance_abs_hat.setConstant(options.tolerance_abs);
     for (int k = 0; k < w.dim; ++k) {
       c_hat_[i][k] = w.scale[k] * problem.c[i][k];
-      lambda_hat_[i][k] = lambda[i][k] / w.scale[k];
+      lambda_hat_[i][k] = lambda[i][k];
+      if (w.scale[k] != 1.0) {
+        lambda_hat_[i][k] /= w.scale[k];
+        w.tolerance_abs_hat[k] *= 1.0 / w.scale[k];
+      }
     }
     change_[i].setZero();
     previous_change_[i].setZero();
@@ -395,18 +408,20 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
     const Eigen::Vector4d diagonal = g_hat_[i * m + i].diagonal();
     double max_friction = 0.0;
     w.step.setZero();
-    for (int k = 0; k < w.dim; ++k) {
-      if (k > 0) max_friction = std::max(max_friction, diagonal[k]);
-      // (46), non-projecting: component k steps α / Ĝ_iikk
+    // (46), non-projecting: component k steps α / Ĝ_iikk
+    w.step[0] = alpha / diagonal[0];
+    // α / max_{k∈F} Ĝ_iikk, as min_{k∈F} α / Ĝ_iikk (rounded division is monotone: the same)
+    double min_friction_step = std::numeric_limits<double>::infinity();
+    for (int k = 1; k < w.dim; ++k) {
+      max_friction = std::max(max_friction, diagonal[k]);
       w.step[k] = alpha / diagonal[k];
+      min_friction_step = std::min(min_friction_step, w.step[k]);
     }
-    // the absolute tolerance in Λ̂ coordinates
-    w.tolerance_abs_hat = options.tolerance_abs * w.scale.cwiseInverse();
-    // r̂_i = α / max_k Ĝ_iikk (43)
-    w.r_contact = alpha / std::max(diagonal[0], max_friction);
     // (46) per block: normal {Λ_N ≥ 0} and friction F, each with its own r̂
-    w.r_normal = alpha / diagonal[0];
-    w.r_friction = w.dim > 1 ? alpha / max_friction : 0.0;
+    w.r_normal = w.step[0];
+    w.r_friction = w.dim > 1 ? min_friction_step : 0.0;
+    // r̂_i = α / max_k Ĝ_iikk (43)
+    w.r_contact = w.dim > 1 ? std::min(w.r_normal, w.r_friction) : w.r_normal;
     // stopping rule: σ_k = (α/Ĝ_iikk) / r̂_k for the steps r̂_i (43) and r̂_F (46, Q = I); 1 for
     // the normal block of (46) (it steps α/Ĝ_iiNN) and where the contact has no component k
     // (σ_k = max_l Ĝ_iill / Ĝ_iikk: products with 1/α instead of divisions, Solve is per step)
@@ -452,7 +467,7 @@ void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* stat
       for (std::size_t j = 0; j < m; ++j) {
         xi.noalias() += g_row[j] * ((kGaussSeidel && j < i) ? next[j] : current[j]);
       }
-      const ContactUpdate update = UpdateContact<kModified>(w, current[i], xi);
+      const ContactUpdate update = UpdateContact<kModified>(w, current[i], xi, &w.rim_hint);
       next[i] = update.next;
       w.normal_projected = update.normal_projected;
       w.friction_projected = update.friction_projected;

@@ -31,8 +31,10 @@
 //             < F(1), so its root is unique; Newton is started at an upper bound (the root of
 //             the cubic minorant of F) and converges monotonically from the right; a bracket
 //             [v_lo, v_hi] guards against rounding. v → 0 is u → ∞ without overflow.
-//    The curve point of the last Newton evaluation is the result (its parameter is within a few
-//    ulps of the root), so no evaluation is repeated.
+//    The result is the curve point of the last Newton evaluation (its parameter within a few ulps
+//    of the root) or, once a Newton step is below 1e-9 of the parameter, that point moved one
+//    step on to first order (the neglected terms are O(step²) < 1e-18): most projections save
+//    their last evaluation.
 //  - on the axes: X = 0 projects to the pole (0, k), Z = 0 to the rim (1, 0).
 #include <algorithm>
 #include <array>
@@ -51,6 +53,11 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 // Newton stops when its step is below this many ulps of the unknown.
 constexpr double kStepTolerance = 4.0 * kEpsilon;
+// A Newton step below this many units of the unknown is the last: its square is below 1e-18,
+// so the curve point one step on is taken to first order (Advance) instead of evaluated.
+constexpr double kLinearStepTolerance = 1e-9;
+// R_c / R̄ = 16/(3π): db_τ/du = -u·R_c·db_T/du gives dβ_τ/du = -u·(16/(3π))·dβ_T/du.
+constexpr double kRcPerRbar = 16.0 / (3.0 * kPi);
 // Newton needs 2-5 evaluations typically and ≤ 16 on all tested inputs (R̄ from 1e-4 to 10); the
 // cap only bounds a pathological input.
 constexpr int kMaxIterations = 100;
@@ -111,18 +118,27 @@ struct RimPoint {
   double slope;         // u³·dβ_T/du (tends to 1/5 as u → ∞)
 };
 
+// Each series p(w) = Σ c_i w^i is summed as p_even(w²) + w·p_odd(w²): two Horner chains of half
+// the length, independent, so the evaluation waits on half as many dependent multiply-adds.
 template <int kTerms>
 constexpr RimPoint RimSeries(double v) {
   const double w = v * v;
-  double a = kSeries.a[kTerms - 1];
-  double e = kSeries.e[kTerms - 1];
-  double d = kSeries.d[kTerms - 1];
-  for (int i = kTerms - 2; i >= 0; --i) {
-    a = a * w + kSeries.a[i];
-    e = e * w + kSeries.e[i];
-    d = d * w + kSeries.d[i];
+  const double w2 = w * w;
+  constexpr int kTopEven = (kTerms - 1) / 2 * 2;
+  constexpr int kTopOdd = kTerms / 2 * 2 - 1;
+  double a_even = 0.0, e_even = 0.0, d_even = 0.0;
+  for (int i = kTopEven; i >= 0; i -= 2) {
+    a_even = a_even * w2 + kSeries.a[i];
+    e_even = e_even * w2 + kSeries.e[i];
+    d_even = d_even * w2 + kSeries.d[i];
   }
-  return {a * w, e * v, d};
+  double a_odd = 0.0, e_odd = 0.0, d_odd = 0.0;
+  for (int i = kTopOdd; i >= 1; i -= 2) {
+    a_odd = a_odd * w2 + kSeries.a[i];
+    e_odd = e_odd * w2 + kSeries.e[i];
+    d_odd = d_odd * w2 + kSeries.d[i];
+  }
+  return {(a_even + w * a_odd) * w, (e_even + w * e_odd) * v, d_even + w * d_odd};
 }
 
 // (51)-(52) for u = 1/v ∈ [1, 2] as printed, with sqrt(u² - 1)/u = sqrt((1 - v)(1 + v)).
@@ -165,6 +181,17 @@ constexpr CapPoint Cap(double u) {
   const double btau = 1.0 - u2 * (1.0 - 0.375 * u2);
   const double slope = 3.0 * kPi / 32.0 * (4.0 - 3.0 * u2);
   return {bt, btau, slope};
+}
+
+// The curve point at v + dv to first order: d(1 - β_T)/dv = v·(u³ dβ_T/du), dβ_τ/dv =
+// (16/(3π))·(u³ dβ_T/du).
+RimPoint Advance(const RimPoint& p, double v, double dv) {
+  return {p.one_minus_bt + dv * v * p.slope, p.btau + dv * kRcPerRbar * p.slope, p.slope};
+}
+
+// The curve point at u + du to first order: dβ_τ/du = -u·(16/(3π))·dβ_T/du.
+CapPoint Advance(const CapPoint& p, double u, double du) {
+  return {p.bt + du * p.slope, p.btau - du * u * kRcPerRbar * p.slope, p.slope};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -226,8 +253,9 @@ struct NewtonEval {
 
 // Root of an increasing-through-its-root function fn on [lo, hi] (fn(lo) ≤ 0 ≤ fn(hi)) by
 // Newton's method from x, falling back to bisection (geometric when the bracket spans more than
-// a factor 2 and lo > 0) whenever a step leaves the bracket. Returns the curve point evaluated
-// at (within a few ulps of) the root.
+// a factor 2 and lo > 0) whenever a step leaves the bracket. Returns the curve point at (within a
+// few ulps of) the root: evaluated there, or one step below kLinearStepTolerance on to first
+// order.
 template <class Fn>
 auto SafeguardedNewton(Fn fn, double lo, double hi, double x) {
   for (int i = 0; i < kMaxIterations; ++i) {
@@ -235,6 +263,10 @@ auto SafeguardedNewton(Fn fn, double lo, double hi, double x) {
     const double step = f.value / f.slope;
     // converged: the Newton step is below rounding of x (or x is a root)
     if (f.value == 0.0 || std::abs(step) <= kStepTolerance * x) return f.point;
+    // the last step, to first order: Newton's error after it is O(step²), below rounding
+    if (std::abs(step) <= kLinearStepTolerance * x && x - step > lo && x - step < hi) {
+      return Advance(f.point, x, -step);
+    }
     if (f.value < 0.0) {
       lo = x;
     } else {
@@ -279,18 +311,31 @@ MeridianProjection ProjectOnCap(double X, double Z, double k, double rc) {
 
 // Foot point on the rim u ≥ 1, given H(1) < 0: root v = 1/u of the convex
 // F(v) = v(X - 1 + (1 - β_T)) - R_c (Z - kβ_τ),  F'(v) = X - β_T + (v² + R_c²)·u³ dβ_T/du.
-MeridianProjection ProjectOnRim(double X, double Z, double k, double rc) {
+// `hint` (in/out, may be null): a start for Newton, then the root found.
+MeridianProjection ProjectOnRim(double X, double Z, double k, double rc, double* hint) {
   const double xm1 = X - 1.0;
-  const auto f = [=](double v) {
+  double last_v = 0.0;
+  const auto f = [=, &last_v](double v) {
     const RimPoint p = Rim(v);
+    last_v = v;
     const double gap_rho = xm1 + p.one_minus_bt;
     return NewtonEval<RimPoint>{v * gap_rho - rc * (Z - k * p.btau),
                                 gap_rho + (v * v + rc * rc) * p.slope, p};
   };
+  const double gamma = rc * Z;
+  // lower bound: β_τ ≤ (3/8) v and β_T ≥ 0 on [0, 1] give F(v) ≤ v(X + 3R_c k/8) - R_c Z
+  const double v_lo = gamma / (X + 0.375 * rc * k);
+  if (hint != nullptr && *hint > v_lo && *hint < 1.0) {
+    // warm start inside the bracket [v_lo, 1] (F(1) > 0): from the right of the root Newton
+    // descends monotonically (F convex); from the left its first step lands right of the root
+    // (or is bisected back into the bracket)
+    const RimPoint p = SafeguardedNewton(f, v_lo, 1.0, *hint);
+    *hint = last_v;
+    return {Z <= k * p.btau, 1.0 - p.one_minus_bt, k * p.btau};
+  }
   // F ≥ F_m(v) = αv³ + βv - γ (first series terms), so the root of F_m is an upper bound
   const double alpha = kSeries.a[0] + rc * k * kSeries.e[1];
   const double beta = xm1 + rc * k * kSeries.e[0];
-  const double gamma = rc * Z;
   double v_hi;
   if (beta > 0.0) {
     // F_m(γ/β) = α(γ/β)³ ≥ 0 and F_m(cbrt(γ/α)) = β cbrt(γ/α) ≥ 0
@@ -301,14 +346,13 @@ MeridianProjection ProjectOnRim(double X, double Z, double k, double rc) {
     v_hi = std::sqrt(-beta / alpha) + std::cbrt(gamma / alpha);
   }
   v_hi = std::min(v_hi, 1.0);
-  // lower bound: β_τ ≤ (3/8) v and β_T ≥ 0 on [0, 1] give F(v) ≤ v(X + 3R_c k/8) - R_c Z
-  const double v_lo = gamma / (X + 0.375 * rc * k);
   const RimPoint p = SafeguardedNewton(f, v_lo, v_hi, v_hi);
+  if (hint != nullptr) *hint = last_v;
   return {Z <= k * p.btau, 1.0 - p.one_minus_bt, k * p.btau};
 }
 
 // Projection of the meridian point (X, Z) ≥ 0 onto the normalised cross-section of B_F.
-MeridianProjection ProjectMeridian(double X, double Z, double k) {
+MeridianProjection ProjectMeridian(double X, double Z, double k, double* rim_hint) {
   const double kx = k * X;
   // interior, quick accept: the diamond with vertices (1, 0), (0, k) lies in B_F
   if (kx + Z <= k) return {true, X, Z};
@@ -322,7 +366,7 @@ MeridianProjection ProjectMeridian(double X, double Z, double k) {
   // H(1) with β_T(1) = 9π/32, β_τ(1) = 3/8
   const double h1 = rc * (Z - 0.375 * k) - (X - 9.0 * kPi / 32.0);
   // interior (every root has Z ≤ P_z) or boundary (the unique root has Z > P_z)
-  return h1 >= 0.0 ? ProjectOnCap(X, Z, k, rc) : ProjectOnRim(X, Z, k, rc);
+  return h1 >= 0.0 ? ProjectOnCap(X, Z, k, rc) : ProjectOnRim(X, Z, k, rc, rim_hint);
 }
 
 }  // namespace
@@ -351,6 +395,11 @@ CoulombContensouBoundaryPoint CoulombContensouBoundary(double u, double radius, 
 }
 
 Prox3 ProxCoulombContensou(const Eigen::Vector3d& x, double radius, double rbar) {
+  return ProxCoulombContensou(x, radius, rbar, nullptr);
+}
+
+Prox3 ProxCoulombContensou(const Eigen::Vector3d& x, double radius, double rbar,
+                           double* rim_hint) {
   // apex: B_F has shrunk to the point 0
   if (!(radius > 0.0)) return {Eigen::Vector3d::Zero(), ProxRegion::kApex};
   const Eigen::Vector2d x_t = x.head<2>();
@@ -360,7 +409,7 @@ Prox3 ProxCoulombContensou(const Eigen::Vector3d& x, double radius, double rbar)
   // reduce to the meridian plane, scaled by radius
   const double inv_radius = 1.0 / radius;
   const MeridianProjection m =
-      ProjectMeridian(rho * inv_radius, std::abs(x.z()) * inv_radius, rbar);
+      ProjectMeridian(rho * inv_radius, std::abs(x.z()) * inv_radius, rbar, rim_hint);
   // interior: x ∈ B_F (53)
   if (m.interior) return {x, ProxRegion::kInterior};
   // boundary: restore the tangential direction (0 on the axis) and the sign of Λ_τ

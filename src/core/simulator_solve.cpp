@@ -48,7 +48,10 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
         island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
   };
   problem_.Resize(m);
-  if (lambda_.size() < static_cast<std::size_t>(m)) lambda_.resize(static_cast<std::size_t>(m));
+  if (lambda_.size() < static_cast<std::size_t>(m)) {
+    lambda_.resize(static_cast<std::size_t>(m));
+    rim_hints_.resize(static_cast<std::size_t>(m));
+  }
   for (int k = 0; k < m; ++k) {
     const ClosedContact& c = contact(k);
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
@@ -57,6 +60,8 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     const bool warm = c.memory->closed_step == step_count_ - 1;
     lambda_[static_cast<std::size_t>(k)] =
         warm ? c.memory->percussion : Eigen::Vector4d::Zero().eval();
+    rim_hints_[static_cast<std::size_t>(k)] =
+        warm ? c.memory->rim_hint : std::numeric_limits<double>::quiet_NaN();
   }
 
   // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on, in padded blocks
@@ -103,7 +108,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     if (!finite) return false;
     // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
     // options were validated when set
-    solver_.SolvePrevalidated(problem_, options_.solver, &lambda_, &island_stats_);
+    solver_.SolvePrevalidated(problem_, options_.solver, &lambda_, &island_stats_, &rim_hints_);
     total_iterations += island_stats_.iterations;
     passes = pass + 1;
     ApplyImpulses(island);
@@ -158,6 +163,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     c.report.percussion = lambda_[static_cast<std::size_t>(k)];
     c.memory->tangent1 = c.report.frame.tangent1;
     c.memory->percussion = c.report.percussion;
+    c.memory->rim_hint = rim_hints_[static_cast<std::size_t>(k)];
     c.memory->closed_step = step_count_;
   }
   return true;

@@ -27,6 +27,7 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -96,8 +97,21 @@ SetUnderTest Ellipsoid() {
           [](double rbar) { return rbar; }};
 }
 SetUnderTest CoulombContensou() {
-  return {"coulomb_contensou", ProxCoulombContensou, brute_force::ContensouMeridian,
-          [](double rbar) { return rbar; }};
+  return {"coulomb_contensou",
+          [](const Eigen::Vector3d& x, double r, double rbar) {
+            return ProxCoulombContensou(x, r, rbar);
+          },
+          brute_force::ContensouMeridian, [](double rbar) { return rbar; }};
+}
+// The warm-started overload, its hint carried from each call to the next (the samples are
+// unrelated points, so mostly a poor start): it must pass every check the cold one does.
+SetUnderTest CoulombContensouHinted() {
+  auto hint = std::make_shared<double>(std::numeric_limits<double>::quiet_NaN());
+  return {"coulomb_contensou_hinted",
+          [hint](const Eigen::Vector3d& x, double r, double rbar) {
+            return ProxCoulombContensou(x, r, rbar, hint.get());
+          },
+          brute_force::ContensouMeridian, [](double rbar) { return rbar; }};
 }
 
 struct Sample {
@@ -585,6 +599,47 @@ TEST(ProxCoulombContensou, VariationalInequality) {
 }
 TEST(ProxCoulombContensou, NonExpansive) { CheckNonExpansive(CoulombContensou()); }
 TEST(ProxCoulombContensou, AgreesWithBruteForce) { CheckAgreesWithBruteForce(CoulombContensou()); }
+
+TEST(ProxCoulombContensou, HintedPassesTheSameChecks) {
+  const SetUnderTest set = CoulombContensouHinted();
+  CheckInteriorFixed(set);
+  CheckExteriorOnBoundary(set);
+  CheckIdempotent(set);
+  CheckVariationalInequality(set);
+  CheckNonExpansive(set);
+  CheckAgreesWithBruteForce(set);
+}
+
+// Any hint, good or absurd, gives the cold projection to a few ulps, and the hint returned is
+// the foot point's v = 1/u: started from it, the same point again.
+TEST(ProxCoulombContensou, AnyHintGivesTheSameProjection) {
+  std::mt19937_64 rng(kSeed + 31);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  int rim_projections = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double radius = LogUniform(rng, -6, 1);
+    const double rbar = LogUniform(rng, -4, 1);
+    // meridian points around the boundary, most of them outside (the branch u > 1 is X large)
+    const Eigen::Vector3d x =
+        Lift(LogUniform(rng, -1, 1.5), rbar * LogUniform(rng, -3, 1), radius, rng);
+    const Prox3 cold = ProxCoulombContensou(x, radius, rbar);
+    double found = nan;
+    ProxCoulombContensou(x, radius, rbar, &found);
+    if (found == found) ++rim_projections;
+    for (const double start : {nan, -1.0, 0.0, 1e-300, Uniform(rng, 0.0, 1.0), 1.0, 2.0, inf,
+                               found, found * (1.0 + 1e-3), found * (1.0 - 1e-3)}) {
+      double hint = start;
+      const Prox3 warm = ProxCoulombContensou(x, radius, rbar, &hint);
+      ASSERT_EQ(warm.region, cold.region) << "hint " << start;
+      EXPECT_LE((warm.point - cold.point).norm(), 4e-16 * radius * (1.0 + rbar))
+          << "x " << x.transpose() << " radius " << radius << " rbar " << rbar << " hint "
+          << start;
+    }
+  }
+  // the branch u > 1 was exercised
+  EXPECT_GT(rim_projections, 200);
+}
 
 TEST(ProxCoulombContensou, AxisPointsProjectToPoleAndRim) {
   const double radius = 1.8e-6, rbar = 2.945e-4;

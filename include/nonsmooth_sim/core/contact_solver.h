@@ -249,6 +249,9 @@ struct ContactWork {
   /// R̄ of the friction set in the iterated coordinates: R̄/a_τ, i.e. the law's R̄ on an original
   /// set (37) and 1 on A⁻¹B_F, A⁻¹C_F (40); unused by sphere (S_F) and the disk
   double set_rbar = 0.0;
+  /// the last foot point of B_F's exact prox on its branch u > 1 (v = 1/u), NaN before the first:
+  /// the warm start of the next (ProxCoulombContensou); from SolvePrevalidated's `rim_hints`
+  double rim_hint = 0.0;
   int dim = 1;
   FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
   bool normal_projected = false;
@@ -279,14 +282,18 @@ class ContactSolver {
   /// The same on the block form: `lambda` holds one padded Λ_i per contact (size m; the warm
   /// start on entry, the solution on return, zero beyond the contact's dimension). The problem
   /// must satisfy what ValidateContactProblem asks of the equivalent dense problem.
+  /// `rim_hints` (optional, size m, in/out) warm-starts the exact prox of B_F per contact as
+  /// `lambda` warm-starts Λ: ContactWork::rim_hint on entry (NaN for none), its last value on
+  /// return. It changes only where the prox's 1-D solve starts, not what it finds.
   void SolvePrevalidated(const BlockContactProblem& problem, const SolverOptions& options,
-                         std::vector<Eigen::Vector4d>* lambda, SolverStatistics* statistics);
+                         std::vector<Eigen::Vector4d>* lambda, SolverStatistics* statistics,
+                         std::vector<double>* rim_hints = nullptr);
 
  private:
   template <SolverType kType>
   void Iterate(const SolverOptions& options, SolverStatistics* statistics);
   void Prepare(const BlockContactProblem& problem, const SolverOptions& options,
-               const std::vector<Eigen::Vector4d>& lambda);
+               const std::vector<Eigen::Vector4d>& lambda, const std::vector<double>* rim_hints);
 
   // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
   // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last two changes |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact

@@ -95,6 +95,12 @@ Prox3 ProxEllipsoid(const Eigen::Vector3d& x, double radius, double rbar);
 /// Euclidean projection: reduced to 2-D (||Λ_T||, Λ_τ) by rotational symmetry, the nearest point
 /// of the boundary curve (b_T(u), b_τ(u)) is found by a safeguarded 1-D solve.
 Prox3 ProxCoulombContensou(const Eigen::Vector3d& x, double radius, double rbar);
+/// The same, warm-started for a sequence of nearby points (an iterative solver's iterates):
+/// `rim_hint` (in/out, not null) holds v = 1/u of the last foot point this overload found on the
+/// branch u > 1, or NaN for none. Any value is safe: it only chooses where the 1-D solve starts
+/// (the result agrees with the overload above to a few ulps), and a good one saves most of it.
+Prox3 ProxCoulombContensou(const Eigen::Vector3d& x, double radius, double rbar,
+                           double* rim_hint);
 
 /// A point (b_T(u), b_τ(u)) of the boundary curve of B_F, (51)-(52), u ∈ [0, ∞]; u = +inf gives
 /// the limit (radius, 0). Accurate for all u (series expansions where the closed forms cancel).

@@ -337,6 +337,7 @@ class Simulator {
   struct ContactMemory {
     Eigen::Vector3d tangent1 = Eigen::Vector3d::UnitX();
     Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
+    double rim_hint = 0.0;  // the warm start of B_F's exact prox (ContactWork::rim_hint)
     long closed_step = -2;  // the step it was last closed in
   };
   // A contact of the index set (12) of the current step.
@@ -432,6 +433,7 @@ class Simulator {
   // k), and its percussions; they only grow
   BlockContactProblem problem_;
   std::vector<Eigen::Vector4d> lambda_;
+  std::vector<double> rim_hints_;  // with lambda_: the solver's warm start of B_F's prox
   SolverStatistics island_stats_;
   // Throws std::invalid_argument (naming the body, the field and its allowed range) unless the
   // mechanical energy of `state` in `scene` (MechanicalEnergy) and each of its terms are finite:
