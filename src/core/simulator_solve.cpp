@@ -52,9 +52,12 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     lambda_.resize(static_cast<std::size_t>(m));
     rim_hints_.resize(static_cast<std::size_t>(m));
   }
+  // B_F's exact prox is warm-started too (its hint); other sets have none to carry
+  bool any_exact = false;
   for (int k = 0; k < m; ++k) {
     const ClosedContact& c = contact(k);
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
+    any_exact = any_exact || c.report.law.friction_set == FrictionSet::kExact;
     // warm start from the previous step's percussions (zero if the contact was open then; the
     // memory is zero beyond the contact's dimension)
     const bool warm = c.memory->closed_step == step_count_ - 1;
@@ -108,7 +111,8 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     if (!finite) return false;
     // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
     // options were validated when set
-    solver_.SolvePrevalidated(problem_, options_.solver, &lambda_, &island_stats_, &rim_hints_);
+    solver_.SolvePrevalidated(problem_, options_.solver, &lambda_, &island_stats_,
+                              any_exact ? &rim_hints_ : nullptr);
     total_iterations += island_stats_.iterations;
     passes = pass + 1;
     ApplyImpulses(island);
@@ -163,7 +167,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     c.report.percussion = lambda_[static_cast<std::size_t>(k)];
     c.memory->tangent1 = c.report.frame.tangent1;
     c.memory->percussion = c.report.percussion;
-    c.memory->rim_hint = rim_hints_[static_cast<std::size_t>(k)];
+    if (any_exact) c.memory->rim_hint = rim_hints_[static_cast<std::size_t>(k)];
     c.memory->closed_step = step_count_;
   }
   return true;
