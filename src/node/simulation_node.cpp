@@ -77,8 +77,9 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
 
   const int queue = parameters_.queue_size;
-  // latched: a node joining while paused learns the time at once (and never sees 0)
-  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10, /*latch=*/true);
+  // latched: a node joining while paused learns the time at once (and never sees 0); the same
+  // queue as the other topics (a queue of 10 overflowed under load when recorded)
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", queue, /*latch=*/true);
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", queue);
   contacts_pub_ = private_nh_.advertise<ContactInfoArray>("contacts", queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
