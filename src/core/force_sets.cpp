@@ -1,4 +1,5 @@
-// Closed-form projections: unilateral set, Coulomb disk, ball S_F (59), cylinder C_F (54).
+// Closed-form projections: the flat disk and the cylinder C_F (54); the unilateral set, the
+// Coulomb disk and the ball S_F (59) are inline in force_sets.h.
 // The ellipsoid E_F and the exact set B_F live in prox_ellipsoid.cpp and
 // prox_coulomb_contensou.cpp.
 #include "nonsmooth_sim/core/force_sets.h"
@@ -8,23 +9,6 @@
 
 namespace nonsmooth_sim {
 
-Prox1 ProxNonNegative(double x) {
-  // interior: x ≥ 0 is kept
-  if (x >= 0.0) return {x, ProxRegion::kInterior};
-  // apex: the set's only boundary point 0
-  return {0.0, ProxRegion::kApex};
-}
-
-Prox2 ProxDisk(const Eigen::Vector2d& x, double radius) {
-  // apex: the disk has shrunk to the point 0
-  if (!(radius > 0.0)) return {Eigen::Vector2d::Zero(), ProxRegion::kApex};
-  const double norm_sq = x.squaredNorm();
-  // interior: ||x|| ≤ radius
-  if (norm_sq <= radius * radius) return {x, ProxRegion::kInterior};
-  // boundary: radial projection (exact for a disk)
-  return {x * (radius / std::sqrt(norm_sq)), ProxRegion::kBoundary};
-}
-
 Prox3 ProxFlatDisk(const Eigen::Vector3d& x, double radius) {
   const Prox2 disk = ProxDisk(x.head<2>(), radius);
   // interior only if x already lies in the plane Λ_τ = 0
@@ -32,16 +16,6 @@ Prox3 ProxFlatDisk(const Eigen::Vector3d& x, double radius) {
   return {Eigen::Vector3d(disk.point.x(), disk.point.y(), 0.0),
           inside ? ProxRegion::kInterior : disk.region == ProxRegion::kApex ? ProxRegion::kApex
                                                                              : ProxRegion::kBoundary};
-}
-
-Prox3 ProxBall(const Eigen::Vector3d& x, double radius) {
-  // apex: the ball has shrunk to the point 0
-  if (!(radius > 0.0)) return {Eigen::Vector3d::Zero(), ProxRegion::kApex};
-  const double norm_sq = x.squaredNorm();
-  // interior, first case of (59)
-  if (norm_sq <= radius * radius) return {x, ProxRegion::kInterior};
-  // boundary, second case of (59): μΛ_N x / ||x||
-  return {x * (radius / std::sqrt(norm_sq)), ProxRegion::kBoundary};
 }
 
 Prox3 ProxCylinder(const Eigen::Vector3d& x, double radius, double rbar) {

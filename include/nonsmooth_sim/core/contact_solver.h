@@ -290,7 +290,8 @@ class ContactSolver {
                          std::vector<double>* rim_hints = nullptr);
 
  private:
-  template <SolverType kType>
+  // kSingle: the problem has one contact (m = 1 known at compile time: no loops over j)
+  template <SolverType kType, bool kSingle>
   void Iterate(const SolverOptions& options, SolverStatistics* statistics);
   void Prepare(const BlockContactProblem& problem, const SolverOptions& options,
                const std::vector<Eigen::Vector4d>& lambda, const std::vector<double>* rim_hints);

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -109,6 +110,34 @@ struct CoulombContensouBoundaryPoint {
   double b_tau;  ///< b_τ(u) [N m s]
 };
 CoulombContensouBoundaryPoint CoulombContensouBoundary(double u, double radius, double rbar);
+
+// --- inline definitions
+inline Prox1 ProxNonNegative(double x) {
+  // interior: x ≥ 0 is kept
+  if (x >= 0.0) return {x, ProxRegion::kInterior};
+  // apex: the set's only boundary point 0
+  return {0.0, ProxRegion::kApex};
+}
+
+inline Prox2 ProxDisk(const Eigen::Vector2d& x, double radius) {
+  // apex: the disk has shrunk to the point 0
+  if (!(radius > 0.0)) return {Eigen::Vector2d::Zero(), ProxRegion::kApex};
+  const double norm_sq = x.squaredNorm();
+  // interior: ||x|| ≤ radius
+  if (norm_sq <= radius * radius) return {x, ProxRegion::kInterior};
+  // boundary: radial projection (exact for a disk)
+  return {x * (radius / std::sqrt(norm_sq)), ProxRegion::kBoundary};
+}
+
+inline Prox3 ProxBall(const Eigen::Vector3d& x, double radius) {
+  // apex: the ball has shrunk to the point 0
+  if (!(radius > 0.0)) return {Eigen::Vector3d::Zero(), ProxRegion::kApex};
+  const double norm_sq = x.squaredNorm();
+  // interior, first case of (59)
+  if (norm_sq <= radius * radius) return {x, ProxRegion::kInterior};
+  // boundary, second case of (59): μΛ_N x / ||x||
+  return {x * (radius / std::sqrt(norm_sq)), ProxRegion::kBoundary};
+}
 
 }  // namespace nonsmooth_sim
 

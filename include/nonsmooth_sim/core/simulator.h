@@ -405,7 +405,9 @@ class Simulator {
   // a static collider that is not a plane): without, the sweep is skipped
   bool needs_sweep_ = false;
   std::vector<Eigen::Isometry3d> collider_pose_;  // per collider, at q_M during FindContacts
-  std::vector<bool> collider_rotated_;  // per collider: its pose has a rotation (not identity)
+  // per collider: its pose has a rotation (not identity); bytes, not std::vector<bool>: it is read
+  // per collider and step
+  std::vector<std::uint8_t> collider_rotated_;
   std::vector<double> bounding_radius_;  // per collider: BoundingRadius of its shape [m]
   // warm starts and tangent frames by (pair, feature)
   std::unordered_map<std::uint64_t, ContactMemory> memory_;
