@@ -371,7 +371,7 @@ void Simulator::SetOptions(const SimulatorOptions& options) {
   ValidateSimulatorOptions(options);
   // percussions scale with Δt: a warm start from another step size would be off by the ratio
   if (options.time_step != options_.time_step) {
-    for (auto& [key, memory] : memory_) memory.percussion.setZero();
+    for (auto& [key, memory] : memory_) memory.DropWarmStart();
   }
   options_ = options;
 }
@@ -429,7 +429,7 @@ void Simulator::SetFrictionSet(FrictionSet set, const std::string& name) {
     if (!found) pair_sets_.emplace_back(pair, set);
   }
   // the warm start of a contact whose set changed would start outside its new set
-  for (auto& [key, memory] : memory_) memory.percussion.setZero();
+  for (auto& [key, memory] : memory_) memory.DropWarmStart();
 }
 
 void Simulator::SetContactLaw(int collider, const ContactLaw& law) {
@@ -440,7 +440,7 @@ void Simulator::SetContactLaw(int collider, const ContactLaw& law) {
   }
   ValidateLaw("law of collider " + scene_.colliders[static_cast<std::size_t>(collider)].name, law);
   scene_.colliders[static_cast<std::size_t>(collider)].law = law;
-  for (auto& [key, memory] : memory_) memory.percussion.setZero();
+  for (auto& [key, memory] : memory_) memory.DropWarmStart();
 }
 
 }  // namespace nonsmooth_sim

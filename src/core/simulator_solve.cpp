@@ -52,6 +52,13 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     lambda_.resize(static_cast<std::size_t>(m));
     rim_hints_.resize(static_cast<std::size_t>(m));
   }
+  // extrapolated starts (simulator.h) in an island of one contact or of contacts that all slid
+  const auto slid = [&](int k) {
+    const ContactMemory& memory = *contact(k).memory;
+    return memory.sliding && memory.closed_step == step_count_ - 1;
+  };
+  bool extrapolating = options_.extrapolate_warm_start;
+  for (int k = 0; m > 1 && k < m && extrapolating; ++k) extrapolating = slid(k);
   // B_F's exact prox is warm-started too (its hint); other sets have none to carry
   bool any_exact = false;
   for (int k = 0; k < m; ++k) {
@@ -59,10 +66,17 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
     any_exact = any_exact || c.report.law.friction_set == FrictionSet::kExact;
     // warm start from the previous step's percussions (zero if the contact was open then; the
-    // memory is zero beyond the contact's dimension)
-    const bool warm = c.memory->closed_step == step_count_ - 1;
-    lambda_[static_cast<std::size_t>(k)] =
-        warm ? c.memory->percussion : Eigen::Vector4d::Zero().eval();
+    // memory is zero beyond the contact's dimension), or extrapolated from the last two
+    const ContactMemory& memory = *c.memory;
+    const bool warm = memory.closed_step == step_count_ - 1;
+    Eigen::Vector4d& start = lambda_[static_cast<std::size_t>(k)];
+    if (!warm) {
+      start.setZero();
+    } else if (extrapolating && memory.converged && memory.closed_before == step_count_ - 2) {
+      start = 2.0 * memory.percussion - memory.percussion_before;
+    } else {
+      start = memory.percussion;
+    }
     rim_hints_[static_cast<std::size_t>(k)] =
         warm ? c.memory->rim_hint : std::numeric_limits<double>::quiet_NaN();
   }
@@ -165,10 +179,16 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
         island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
     c.report.percussion = lambda_[static_cast<std::size_t>(k)];
-    c.memory->tangent1 = c.report.frame.tangent1;
-    c.memory->percussion = c.report.percussion;
-    if (any_exact) c.memory->rim_hint = rim_hints_[static_cast<std::size_t>(k)];
-    c.memory->closed_step = step_count_;
+    ContactMemory& memory = *c.memory;
+    memory.sliding = island_stats_.friction_projected[static_cast<std::size_t>(k)] &&
+                     c.report.dimension > 1;
+    memory.converged = island_stats_.converged;
+    memory.tangent1 = c.report.frame.tangent1;
+    memory.percussion_before = memory.percussion;
+    memory.percussion = c.report.percussion;
+    if (any_exact) memory.rim_hint = rim_hints_[static_cast<std::size_t>(k)];
+    memory.closed_before = memory.closed_step;
+    memory.closed_step = step_count_;
   }
   return true;
 }

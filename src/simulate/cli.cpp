@@ -233,6 +233,9 @@ std::string UsageText() {
     << kGapCorrectionSlop
     << " m is\n"
        "                        lifted back to it; the lifts are reported in the summary)\n"
+       "  --plain-warm-start    start each contact's solve from the last step's percussion (by\n"
+       "                        default it is extrapolated from the last two steps where that\n"
+       "                        is safe: the same motion within the tolerance, fewer iterations)\n"
        "  --csv FILE            time series. Tippe-Top: t, position, quaternion, theta, energy,\n"
        "                        Jellett, vertical spin, per sphere closed/percussions,\n"
        "                        iterations. --urdf: t, per body <link>/x y z qx qy qz qw vx vy\n"
@@ -268,6 +271,10 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
       }
       if (arg == "--no-gap-correction") {
         config.options.gap_correction = false;
+        continue;
+      }
+      if (arg == "--plain-warm-start") {
+        config.options.extrapolate_warm_start = false;
         continue;
       }
       std::string value;

@@ -141,6 +141,7 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("explicit_gyroscopic_safe", s.explicit_gyroscopic_safe);
   json.Add("t_explicit_gyroscopic_unsafe", s.t_explicit_gyroscopic_unsafe);
   json.Add("gap_correction", c.options.gap_correction);
+  json.Add("extrapolate_warm_start", c.options.extrapolate_warm_start);
   json.Add("gap_correction_max", s.gap_correction_max);
   json.Add("gap_correction_energy", s.gap_correction_energy);
   json.Add("gap_correction_steps", s.gap_correction_steps);

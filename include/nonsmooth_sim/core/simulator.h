@@ -24,7 +24,16 @@
 //    body without a closed contact costs only its free step.
 //  - Warm start and tangent frame of a contact are kept per (collider pair, feature): the
 //    previous step's percussions of the contacts that were closed then (zero for newly closed
-//    ones), the tangents carried over (contact_frame.h).
+//    ones), the tangents carried over (contact_frame.h). With
+//    SimulatorOptions::extrapolate_warm_start the start is extrapolated linearly instead,
+//    2Λ^{n-1} - Λ^{n-2}, for a contact closed in the last two steps whose last solve converged
+//    (an unconverged iterate's error would be extrapolated too), in an island of one contact or
+//    of contacts that all slid in the last step. Several contacts that stick can share their
+//    load in many ways (a face on its points, a squeeze between two feet that roll); a start
+//    extrapolated along that freedom is a solution as well, and the shares would drift step by
+//    step. The start only chooses where the iteration begins: the result differs within the
+//    solver's tolerance. (Falling back to Λ^{n-1} after steps where the extrapolation served
+//    worse, an impact, a stick-slip switch, changed nothing measurable on the eight scenes.)
 //  - GyroscopicScheme::kImplicitMidpoint replaces the gyroscopic part of h(q_M, u_B) by the
 //    implicit midpoint rule Θ(ω_E - ω_B) = -Δt ω_M × Θω_M + Σ J_iᵀΛ_i, ω_M = (ω_B + ω_E)/2
 //    (solved by Newton for fixed Λ), with a few fixed-point passes around the contact solve: the
@@ -156,6 +165,10 @@ struct SimulatorOptions {
   /// reported in StepStatistics::gap_correction_energy. For the Tippe-Top on the ground this is a
   /// lift along +z by the highest closed contact's depth less the slop.
   bool gap_correction = true;
+  /// The warm start of a contact's percussion: true = extrapolated from the last two steps where
+  /// that is safe (see the header comment), false = the last step's percussion. Measured on the
+  /// Tippe-Top (8 s, `sphere`): 3.6 → 2.1 solver iterations per step, θ(t) within 1e-6 rad.
+  bool extrapolate_warm_start = true;
 };
 /// Throws std::invalid_argument naming the field and its allowed range.
 void ValidateSimulatorOptions(const SimulatorOptions& options);
@@ -337,8 +350,17 @@ class Simulator {
   struct ContactMemory {
     Eigen::Vector3d tangent1 = Eigen::Vector3d::UnitX();
     Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
+    Eigen::Vector4d percussion_before = Eigen::Vector4d::Zero();  // of the step before that
     double rim_hint = 0.0;  // the warm start of B_F's exact prox (ContactWork::rim_hint)
     long closed_step = -2;  // the step it was last closed in
+    long closed_before = -3;  // the step before that in which it was closed
+    bool sliding = false;    // its friction was projected in its last solve
+    bool converged = false;  // its last solve converged
+    // a warm start that no longer fits (another Δt, law or friction set): start from zero
+    void DropWarmStart() {
+      percussion.setZero();
+      percussion_before.setZero();
+    }
   };
   // A contact of the index set (12) of the current step.
   struct ClosedContact {
