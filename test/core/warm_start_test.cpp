@@ -1,7 +1,7 @@
 // The extrapolated warm start (SimulatorOptions::extrapolate_warm_start, simulator.h): against the
 // plain one (the last step's percussion) it must give the same motion within the solver's
-// tolerance, save iterations where the percussions change smoothly, and cost none where the
-// solution is not unique (two feet that roll and stick can squeeze each other in any amount).
+// tolerance, save iterations where the percussions change smoothly, and not let a solution that is
+// not unique drift (two feet that roll and stick can squeeze each other in any amount).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,7 +17,14 @@ namespace {
 
 struct Trajectory {
   std::vector<BodyState> states;  // after every step
-  long iterations = 0;            // summed over the steps
+  std::vector<int> iterations;    // of every step
+  long Iterations(int first = 0) const {
+    long sum = 0;
+    for (std::size_t k = static_cast<std::size_t>(first); k < iterations.size(); ++k) {
+      sum += iterations[k];
+    }
+    return sum;
+  }
 };
 
 Trajectory Simulate(const Scene& scene, bool extrapolate, int steps) {
@@ -29,7 +36,7 @@ Trajectory Simulate(const Scene& scene, bool extrapolate, int steps) {
   for (int k = 0; k < steps; ++k) {
     sim.Step(&stats);
     EXPECT_TRUE(stats.state_finite);
-    run.iterations += stats.solver.iterations;
+    run.iterations.push_back(stats.solver.iterations);
     run.states.push_back(sim.state()[0]);
   }
   return run;
@@ -62,8 +69,8 @@ TEST_P(TippeTopWarmStart, ExtrapolatedKeepsTheMotionAndSavesIterations) {
   EXPECT_EQ(inverted_extrapolated, inverted_plain);
   // the top slides smoothly on one contact most of the time: far fewer iterations
   // (measured 0.70 of the plain start's over these 1.6 s with sphere and exact, 0.57 over 8 s)
-  EXPECT_LT(static_cast<double>(extrapolated.iterations), 0.75 * plain.iterations)
-      << "plain " << plain.iterations << ", extrapolated " << extrapolated.iterations;
+  EXPECT_LT(static_cast<double>(extrapolated.Iterations()), 0.75 * plain.Iterations())
+      << "plain " << plain.Iterations() << ", extrapolated " << extrapolated.Iterations();
 }
 
 INSTANTIATE_TEST_SUITE_P(Sets, TippeTopWarmStart,
@@ -105,12 +112,22 @@ TEST(WarmStart, TwoStickingFeetDoNotDrift) {
     largest = std::max(largest, (a.position - b.position).norm());
   }
   EXPECT_LT(largest, 1e-6);
-  // still rolling at the end (the phase the test is about)
+  // rolling on both feet from about 0.4 s on (the phase the test is about), still at the end
   EXPECT_GT(plain.states.back().linear_velocity.head<2>().norm(), 0.05);
-  // no more iterations than the plain start (measured 0.90 of them; extrapolating these islands
-  // too took 2.7 times as many: the squeeze drifted)
-  EXPECT_LE(static_cast<double>(extrapolated.iterations), 1.05 * plain.iterations)
-      << "plain " << plain.iterations << ", extrapolated " << extrapolated.iterations;
+  // While it rolls the plain start takes one iteration per step. Extrapolating these islands too
+  // took about 90 per step: the squeeze drifted. With the rule, measured 1.21 per step: the feet
+  // still drill (2.5e-5 rad/s about the vertical), so their friction stays on the boundary of
+  // the ball S_F and the island counts as sliding, where the squeeze, almost tangent to that
+  // boundary while Λ_T ≈ 0, still creeps (by 1e-10 N s per step).
+  constexpr int kRolling = 5000;
+  EXPECT_LE(static_cast<double>(extrapolated.Iterations(kRolling)),
+            1.5 * plain.Iterations(kRolling))
+      << "plain " << plain.Iterations(kRolling) << ", extrapolated "
+      << extrapolated.Iterations(kRolling);
+  // overall, not more (measured 0.90 of the plain start's: the sliding phase before, the dumbbell
+  // spinning on both feet, takes about 200 iterations per step)
+  EXPECT_LE(static_cast<double>(extrapolated.Iterations()), 1.05 * plain.Iterations())
+      << "plain " << plain.Iterations() << ", extrapolated " << extrapolated.Iterations();
 }
 
 }  // namespace
