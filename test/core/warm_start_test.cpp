@@ -124,8 +124,8 @@ TEST(WarmStart, TwoStickingFeetDoNotDrift) {
             1.5 * plain.Iterations(kRolling))
       << "plain " << plain.Iterations(kRolling) << ", extrapolated "
       << extrapolated.Iterations(kRolling);
-  // overall, not more (measured 0.90 of the plain start's: the sliding phase before, the dumbbell
-  // spinning on both feet, takes about 200 iterations per step)
+  // overall, not more (measured 0.90 of the plain start's; most are spent while its spin about the
+  // vertical stops, at 0.15-0.22 s, up to the 1000-iteration cap per step: docs/dev-notes.md)
   EXPECT_LE(static_cast<double>(extrapolated.Iterations()), 1.05 * plain.Iterations())
       << "plain " << plain.Iterations() << ", extrapolated " << extrapolated.Iterations();
 }
