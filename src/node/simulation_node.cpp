@@ -231,7 +231,8 @@ std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point dea
 void SimulationNode::StepOnce() {
   try {
     if (wrenches_active_) ApplyWrenches();
-    last_step_ = sim_->Step();
+    // in place: the statistics' per-contact flags keep their storage (no allocation per step)
+    sim_->Step(&last_step_);
   } catch (const std::exception& e) {
     // the core validates its inputs and throws on what it cannot step; never abort the node
     Fault(std::string("a step failed: ") + e.what());
