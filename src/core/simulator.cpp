@@ -110,7 +110,10 @@ void Simulator::BuildCaches() {
   bounding_radius_.resize(scene_.colliders.size());
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     collider_rotated_[i] = !scene_.colliders[i].pose.linear().isIdentity(0.0);
-    bounding_radius_[i] = BoundingRadius(scene_.colliders[i].shape);
+    // padded by the hysteresis of the index set (12): the broad phase must pass a pair whose
+    // contact was closed and now has a round-off-level positive gap (a sphere's bounding sphere
+    // is the sphere itself: unpadded, the pair was dropped before the narrow phase saw it)
+    bounding_radius_[i] = BoundingRadius(scene_.colliders[i].shape) + kContactHysteresis;
   }
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     if (scene_.colliders[i].body == kWorld) collider_pose_[i] = scene_.colliders[i].pose;

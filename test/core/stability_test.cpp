@@ -630,7 +630,9 @@ TEST(NormalForceToZero, RestingOnTwelveClosedContacts) {
     const double weight = 1.0 * 9.81 * 1e-3;  // m g Δt [N s]
     double max_load_error = 0.0;
     long wrong_but_converged = 0;
+    long feet_dropped = 0;  // steps whose index set lost a foot
     const RunReport r = RunChecked(&sim, 1000, 1e-6, [&](long, const StepStatistics& stats) {
+      if (stats.closed_contacts != 12) ++feet_dropped;
       double load = 0.0;
       for (const ContactState& c : sim.contacts()) load += c.percussion[0];
       const double error = std::abs(load - weight) / weight;
@@ -652,6 +654,12 @@ TEST(NormalForceToZero, RestingOnTwelveClosedContacts) {
       // stop the increment test early, at ~tolerance / α)
       EXPECT_LT(max_load_error, 1e-3) << what;
       EXPECT_LT(sim.state()[0].position.head<2>().norm(), 1e-12) << what;
+      // every foot stays in the index set (12): the ends of a step leave round-off-level gaps of
+      // either sign (±1e-17 m), and a foot closed in the last step stays closed up to
+      // kContactHysteresis. The broad phase once cut at the unpadded bounding sphere (= the
+      // foot): Gauss-Seidel dropped to 7 of 12 feet every other step, 170 iterations each time
+      // (and the solver's metric friction prox tipped the disc over the feet left, 6 µm)
+      EXPECT_EQ(feet_dropped, 0) << what;
     }
   }
 }
