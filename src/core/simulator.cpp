@@ -147,6 +147,7 @@ void Simulator::Step(StepStatistics* out) {
   stats.gap_correction = 0.0;
   stats.gap_correction_energy = 0.0;
   stats.gap_correction_undone = false;
+  stats.energy = std::numeric_limits<double>::quiet_NaN();
   stats.state_finite = !diverged_;
   if (diverged_) return;
 
@@ -216,6 +217,7 @@ void Simulator::Step(StepStatistics* out) {
     bool corrected_finite =
         !gap_moved_ ||
         (std::isfinite(stats.gap_correction) && std::isfinite(stats.gap_correction_energy));
+    const double end_energy = energy;
     energy = 0.0;
     for (std::size_t b = 0; gap_moved_ && corrected_finite && b < state_.size(); ++b) {
       const BodyState& s = state_[b];
@@ -231,8 +233,12 @@ void Simulator::Step(StepStatistics* out) {
       stats.gap_correction = 0.0;
       stats.gap_correction_energy = 0.0;
       stats.gap_correction_undone = true;
+      energy = end_energy;
+    } else if (!gap_moved_) {
+      energy = end_energy;
     }
   }
+  stats.energy = energy;
   // the report: γ_E = W(q_M)ᵀu_E, the velocity the contact law constrained
   contacts_.resize(closed_count_);
   for (std::size_t i = 0; i < closed_count_; ++i) {

@@ -57,7 +57,7 @@ void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatis
   const auto& contacts = simulator.contacts();
 
   // energy: largest increase over one step and over the start
-  const double energy = simulator.Energy();
+  const double energy = stats.energy;  // Energy() of the state after the step
   if (energy - energy_previous_ > summary_.max_energy_increase) {
     summary_.max_energy_increase = energy - energy_previous_;
     summary_.max_energy_increase_time = t;

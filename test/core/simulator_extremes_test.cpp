@@ -92,6 +92,7 @@ bool SameBits(const std::vector<BodyState>& a, const std::vector<BodyState>& b) 
 void ExpectFiniteOrFault(const Simulator& sim, const StepStatistics& stats,
                          const std::vector<BodyState>& before, const std::string& where) {
   if (!stats.state_finite) {
+    EXPECT_TRUE(std::isnan(stats.energy)) << where << ": a step not taken reports an energy";
     EXPECT_TRUE(sim.diverged()) << where;
     EXPECT_TRUE(SameBits(sim.state(), before)) << where << ": a step not taken changed the state";
     return;
@@ -99,6 +100,8 @@ void ExpectFiniteOrFault(const Simulator& sim, const StepStatistics& stats,
   EXPECT_TRUE(Finite(sim.state())) << where << ": state_finite, but the state is not";
   EXPECT_TRUE(std::isfinite(sim.Energy())) << where << ": state_finite, but Energy() = "
                                            << sim.Energy();
+  // the energy the step summed is the state's, bit for bit (also after an undone correction)
+  EXPECT_EQ(stats.energy, sim.Energy()) << where;
   EXPECT_TRUE(std::isfinite(stats.gap_correction))
       << where << ": gap_correction = " << stats.gap_correction;
   EXPECT_TRUE(std::isfinite(stats.gap_correction_energy))

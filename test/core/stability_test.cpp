@@ -65,6 +65,7 @@ struct RunReport {
   long contact_steps = 0;      // steps with at least one closed contact
   long unconverged_steps = 0;  // of those, reported unconverged
   long dishonest_steps = 0;  // converged ≠ (residual ≤ 1), or converged with γ_N < -tolerance
+  long energy_report_wrong = 0;  // steps whose StepStatistics::energy is not Energy(), bit for bit
   bool finite = true;
   double max_quaternion_error = 0.0;      // max ||p| - 1|
   double min_gap = kInf;  // smallest gap of any collider above the ground after a step [m]
@@ -137,6 +138,7 @@ RunReport RunChecked(Simulator* sim, long steps, double normal_tolerance = 1e-6,
           std::max(r.max_quaternion_error, std::abs(s.orientation.norm() - 1.0));
     }
     const double energy = sim->Energy();
+    if (!(stats.energy == energy)) ++r.energy_report_wrong;
     r.gap_correction_energy += stats.gap_correction_energy;
     r.max_gap_correction = std::max(r.max_gap_correction, stats.gap_correction);
     if (stats.gap_correction > 0.0) ++r.gap_correction_steps;
@@ -178,6 +180,7 @@ void ExpectSane(const RunReport& r, double min_gap_bound, const std::string& wha
   EXPECT_LT(r.max_quaternion_error, 1e-14) << what;
   EXPECT_GT(r.min_gap, min_gap_bound) << what;
   EXPECT_LE(r.max_set_violation, kSetRoundOff) << what;
+  EXPECT_EQ(r.energy_report_wrong, 0) << what;
   EXPECT_EQ(r.dishonest_steps, 0) << what << " (smallest γ_N of a converged step "
                                   << r.min_normal_velocity << " m/s)";
 }

@@ -119,6 +119,7 @@
 #define NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -227,8 +228,10 @@ struct SolverStatistics {
   bool converged = false;
   /// Per contact: whether the last iteration projected its friction components (sliding) and its
   /// normal component (separating, Λ_N clamped to 0). Frictionless contacts: friction false.
-  std::vector<bool> friction_projected;
-  std::vector<bool> normal_projected;
+  /// Bytes (0 or 1), not std::vector<bool>: written per contact every step, and a bit vector's
+  /// masked writes cost the Tippe-Top about 2 % of its step.
+  std::vector<std::uint8_t> friction_projected;
+  std::vector<std::uint8_t> normal_projected;
 };
 
 namespace internal {

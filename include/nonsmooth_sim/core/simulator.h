@@ -223,6 +223,10 @@ struct StepStatistics {
   double gap_correction = 0.0;
   /// Potential energy the lifts added in this step, Σ -m g·Δr over the moved bodies [J].
   double gap_correction_energy = 0.0;
+  /// Energy() of the state after this step, gap correction included [J]: the step sums it anyway
+  /// (the state must not overflow it), so a caller need not sum it again. NaN if the step was not
+  /// taken (state_finite false).
+  double energy = 0.0;
   /// false: this step met a non-finite value (state, free velocities, contact problem, end state or
   /// the squared norms of the end velocities), i.e. the scheme diverged. The step was not taken:
   /// state, time and contact report stay at the last finite step, and every later Step() returns at
