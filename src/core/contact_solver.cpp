@@ -134,7 +134,7 @@ double ProjectedChangeCap(const Eigen::Vector4d& change, const Eigen::Vector4d& 
 // `change` and `previous_change` are |ΔΛ̂| of that update and of the one before (σ_k, capped by
 // q/(1 - q) on a projecting friction block)
 template <bool kModified>
-Eigen::Array4d ChangeScale(const ContactWork& w, const Eigen::Vector4d& change,
+[[gnu::always_inline]] inline Eigen::Array4d ChangeScale(const ContactWork& w, const Eigen::Vector4d& change,
                            const Eigen::Vector4d& previous_change) {
   // (46): the accepted y stepped every component naturally, as the normal block always does
   if (kModified && w.friction_natural_step) return Eigen::Array4d::Ones();
@@ -176,12 +176,6 @@ double ResidualTerm(const Eigen::Vector4d& distance, const Eigen::Vector4d& lamb
 }
 
 }  // namespace
-
-int ContactDimension(const ContactLaw& law) {
-  if (!(law.mu > 0.0)) return 1;
-  if (law.friction_set == FrictionSet::kCoulomb || !(law.rbar > 0.0)) return 3;
-  return 4;
-}
 
 void ValidateSolverOptions(const SolverOptions& options) {
   if (!IsKnown(options.type)) {

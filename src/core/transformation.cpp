@@ -52,21 +52,6 @@ Eigen::Matrix3d ContensouMap(double rbar) {
   return Eigen::Vector3d(1.0, 1.0, rbar).asDiagonal();
 }
 
-Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law, const SolverOptions& options) {
-  const Eigen::Vector4d mapped(1.0, 1.0, 1.0, law.rbar);  // diag(1, A) with A of (56)
-  // without a drilling component every law is the coulomb disk: nothing to map
-  if (ContactDimension(law) != 4) return Eigen::Vector4d::Ones();
-  switch (law.friction_set) {
-    case FrictionSet::kSphere: return mapped;  // A⁻¹E_F = S_F (57)
-    case FrictionSet::kExact:                  // A⁻¹B_F = B_F with R̄ = 1, (40)-(47)
-    case FrictionSet::kCylinder:               // A⁻¹C_F = C_F with R̄ = 1, (40)-(47)
-      return options.map_drilling_sets ? mapped : Eigen::Vector4d::Ones();
-    case FrictionSet::kEllipsoid:  // E_F itself, the paper's untransformed reference (37)
-    case FrictionSet::kCoulomb: break;
-  }
-  return Eigen::Vector4d::Ones();
-}
-
 Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law) {
   SolverOptions paper;
   paper.map_drilling_sets = false;

@@ -138,8 +138,13 @@ struct ContactLaw {
 };
 
 /// Number of percussion components a contact with this law has: 1 (frictionless, μ = 0), 3 (normal
-/// and two tangential: coulomb, or R̄ = 0) or 4 (with the drilling component).
-int ContactDimension(const ContactLaw& law);
+/// and two tangential: coulomb, or R̄ = 0) or 4 (with the drilling component). Inline: the step
+/// asks it several times per contact.
+inline int ContactDimension(const ContactLaw& law) {
+  if (!(law.mu > 0.0)) return 1;
+  if (law.friction_set == FrictionSet::kCoulomb || !(law.rbar > 0.0)) return 3;
+  return 4;
+}
 
 /// Solver iteration scheme.
 enum class SolverType { kJacobi, kModifiedJacobi, kGaussSeidel };

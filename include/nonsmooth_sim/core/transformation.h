@@ -40,8 +40,22 @@ Eigen::Matrix3d ContensouMap(double rbar);
 /// for a contact with a drilling component (ContactDimension = 4) whose law is `sphere`
 /// (A⁻¹E_F = S_F (57)), or `exact` / `cylinder` with options.map_drilling_sets (A⁻¹B_F, A⁻¹C_F
 /// = the sets with R̄ = 1); all ones otherwise (iterated on the original set, (37)). Entries
-/// beyond the contact's dimension are 1. No validation (see ValidateContactProblem).
-Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law, const SolverOptions& options);
+/// beyond the contact's dimension are 1. No validation (see ValidateContactProblem). Inline: the
+/// solver asks it per contact per step.
+inline Eigen::Vector4d ContactMapDiagonal(const ContactLaw& law, const SolverOptions& options) {
+  // without a drilling component every law is the coulomb disk: nothing to map
+  if (ContactDimension(law) != 4) return Eigen::Vector4d::Ones();
+  const Eigen::Vector4d mapped(1.0, 1.0, 1.0, law.rbar);  // diag(1, A) with A of (56)
+  switch (law.friction_set) {
+    case FrictionSet::kSphere: return mapped;  // A⁻¹E_F = S_F (57)
+    case FrictionSet::kExact:                  // A⁻¹B_F = B_F with R̄ = 1, (40)-(47)
+    case FrictionSet::kCylinder:               // A⁻¹C_F = C_F with R̄ = 1, (40)-(47)
+      return options.map_drilling_sets ? mapped : Eigen::Vector4d::Ones();
+    case FrictionSet::kEllipsoid:  // E_F itself, the paper's untransformed reference (37)
+    case FrictionSet::kCoulomb: break;
+  }
+  return Eigen::Vector4d::Ones();
+}
 
 /// The paper's choice, section 6: only the `sphere` law is mapped, every other law is iterated on
 /// its original set. The same as ContactMapDiagonal(law, options) with
