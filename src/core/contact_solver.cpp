@@ -134,8 +134,9 @@ double ProjectedChangeCap(const Eigen::Vector4d& change, const Eigen::Vector4d& 
 // `change` and `previous_change` are |ΔΛ̂| of that update and of the one before (σ_k, capped by
 // q/(1 - q) on a projecting friction block)
 template <bool kModified>
-[[gnu::always_inline]] inline Eigen::Array4d ChangeScale(const ContactWork& w, const Eigen::Vector4d& change,
-                           const Eigen::Vector4d& previous_change) {
+[[gnu::always_inline]] inline Eigen::Array4d ChangeScale(const ContactWork& w,
+                                                         const Eigen::Vector4d& change,
+                                                         const Eigen::Vector4d& previous_change) {
   // (46): the accepted y stepped every component naturally, as the normal block always does
   if (kModified && w.friction_natural_step) return Eigen::Array4d::Ones();
   Eigen::Array4d scale =

@@ -661,7 +661,6 @@ TEST(NormalForceToZero, RestingOnTwelveClosedContacts) {
       // either sign (±1e-17 m), and a foot closed in the last step stays closed up to
       // kContactHysteresis. The broad phase once cut at the unpadded bounding sphere (= the
       // foot): Gauss-Seidel dropped to 7 of 12 feet every other step, 170 iterations each time
-      // (and the solver's metric friction prox tipped the disc over the feet left, 6 µm)
       EXPECT_EQ(feet_dropped, 0) << what;
     }
   }
