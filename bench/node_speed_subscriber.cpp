@@ -1,14 +1,14 @@
 // node_speed_subscriber: the subscriber of scripts/node-speed. Subscribes to /tf and
 // /nonsmooth_sim/contacts with queues large enough that nothing is dropped (every message is
-// deserialized, as in a real consumer), counts what arrives and prints the counts on shutdown
-// (SIGINT): "received tf <n> contacts <m>". Not a test and not a Google Benchmark.
+// deserialized, as in a real consumer), counts the samples (stamps, steps) that arrive and
+// prints the counts on shutdown (SIGINT): "received tf <n> contacts <m>". Not a test and not a Google Benchmark.
 #include <ros/ros.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <atomic>
 #include <cstdio>
 
-#include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/ContactSteps.h"
 
 namespace {
 
@@ -18,8 +18,18 @@ constexpr uint32_t kQueueSize = 1000000;
 std::atomic<long> tf_count{0};
 std::atomic<long> contacts_count{0};
 
-void OnTf(const tf2_msgs::TFMessage::ConstPtr&) { ++tf_count; }
-void OnContacts(const nonsmooth_sim::ContactInfoArray::ConstPtr&) { ++contacts_count; }
+// counts samples, not messages: a /tf message carries several stamps (each stamp's transforms
+// are consecutive), a ~contacts message several steps
+void OnTf(const tf2_msgs::TFMessage::ConstPtr& m) {
+  long stamps = 0;
+  for (std::size_t i = 0; i < m->transforms.size(); ++i) {
+    if (i == 0 || m->transforms[i].header.stamp != m->transforms[i - 1].header.stamp) ++stamps;
+  }
+  tf_count += stamps;
+}
+void OnContacts(const nonsmooth_sim::ContactSteps::ConstPtr& m) {
+  contacts_count += static_cast<long>(m->steps.size());
+}
 
 }  // namespace
 

@@ -18,7 +18,8 @@ find_package(catkin REQUIRED COMPONENTS
 # ---------------------------------------------------------------------------------------------
 # Messages and services (generated headers: <build>/devel/include/nonsmooth_sim/).
 add_message_files(DIRECTORY msg FILES
-  BodyInfo.msg ContactInfo.msg ContactInfoArray.msg ModelState.msg SimulationState.msg)
+  BodyInfo.msg ContactInfo.msg ContactInfoArray.msg ContactSteps.msg ModelState.msg
+  SimulationState.msg)
 # the world services' types have the names, fields and field types of gazebo_msgs (ROS 1)
 add_service_files(DIRECTORY srv FILES
   ApplyBodyWrench.srv BodyRequest.srv DeleteModel.srv GetFrictionSet.srv GetModelProperties.srv

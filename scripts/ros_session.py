@@ -1,4 +1,4 @@
-"""A headless ROS session for scripts/record and scripts/screenshot.
+"""A headless ROS session for scripts/record and scripts/screenshot (and the bag tests).
 
 Starts a master of its own on a free loopback port (ROS_IP=127.0.0.1, never reachable from other
 machines), runs commands inside the build's catkin environment (devel/env.sh) with argument lists
@@ -37,6 +37,17 @@ def wait_for(condition, timeout, what):
         if time.monotonic() > end:
             raise TimeoutError(what)
         time.sleep(0.01)
+
+
+def tf_samples(message):
+    """The samples of a /tf message, oldest first: one list of transforms per run of equal stamps
+    (the node sends several stamps in one message, ~max_samples_per_message)."""
+    samples = []
+    for t in message.transforms:
+        if not samples or samples[-1][-1].header.stamp != t.header.stamp:
+            samples.append([])
+        samples[-1].append(t)
+    return samples
 
 
 def inside(folder, name):

@@ -216,11 +216,11 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
   }
 }
 
-void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
-                    tf2_msgs::TFMessage* msg) {
+void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
+                      tf2_msgs::TFMessage* msg) {
   const Scene& scene = sim.scene();
-  msg->transforms.resize(scene.bodies.size() + frames.slots.size());
-  std::size_t k = 0;
+  std::size_t k = msg->transforms.size();
+  msg->transforms.resize(k + scene.bodies.size() + frames.slots.size());
   for (std::size_t b = 0; b < scene.bodies.size(); ++b, ++k) {
     geometry_msgs::TransformStamped& t = msg->transforms[k];
     t.header.stamp = stamp;

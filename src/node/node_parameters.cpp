@@ -166,6 +166,11 @@ void ValidateNodeParameters(const NodeParameters& p) {
   RequireRate("wall_update_rate", p.wall_update_rate, false);
   if (p.queue_size < 1) throw std::invalid_argument("parameter ~queue_size: must be >= 1");
   RequireRate("max_wall_publish_rate", p.max_wall_publish_rate, true);
+  if (p.max_samples_per_message < 1 || p.max_samples_per_message > kMaxSamplesPerMessage) {
+    throw std::invalid_argument("parameter ~max_samples_per_message: must be >= 1 and <= " +
+                                std::to_string(kMaxSamplesPerMessage) + " (1 = one sample per "
+                                "message), got " + std::to_string(p.max_samples_per_message));
+  }
   if (!(p.marker_force_scale >= 0.0) || !(p.marker_torque_scale >= 0.0)) {
     throw std::invalid_argument("parameters ~marker_force_scale, ~marker_torque_scale: >= 0");
   }
@@ -252,6 +257,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   r.Number("wall_update_rate", &p.wall_update_rate);
   r.Integer("queue_size", &p.queue_size);
   r.Number("max_wall_publish_rate", &p.max_wall_publish_rate);
+  r.Integer("max_samples_per_message", &p.max_samples_per_message);
   r.Number("marker_force_scale", &p.marker_force_scale);
   r.Number("marker_torque_scale", &p.marker_torque_scale);
 

@@ -112,10 +112,7 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
       ++done;
       if (done % kStepWallCheck == 0 && Clock::now() > deadline) break;
     }
-    const double busy = std::chrono::duration<double>(Clock::now() - start).count();
-    period_.busy_wall += busy;
-    total_.busy_wall += busy;
-    LogSummaryIfDue();  // ~duration reached in this chunk
+    FinishChunk(start);  // the chunk's samples sent, ~duration's log line if reached in it
     if (failed || done == req.steps) break;
     lock.unlock();
     while (waiting_services_.load() > 0) std::this_thread::yield();

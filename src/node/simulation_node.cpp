@@ -81,7 +81,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   // queue as the other topics (a queue of 10 overflowed under load when recorded)
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", queue, /*latch=*/true);
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", queue);
-  contacts_pub_ = private_nh_.advertise<ContactInfoArray>("contacts", queue);
+  contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
   for (int collider : frames_.slots) {
@@ -221,11 +221,20 @@ std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point dea
       break;
     }
   }
-  const double busy = Seconds(Clock::now() - start);
+  FinishChunk(start);
+  return done;
+}
+
+void SimulationNode::FinishChunk(Clock::time_point start) {
+  const Clock::time_point flush = Clock::now();
+  FlushSamples();
+  const Clock::time_point end = Clock::now();
+  period_.publish_wall += Seconds(end - flush);
+  total_.publish_wall += Seconds(end - flush);
+  const double busy = Seconds(end - start);
   period_.busy_wall += busy;
   total_.busy_wall += busy;
   LogSummaryIfDue();
-  return done;
 }
 
 void SimulationNode::StepOnce() {
@@ -369,15 +378,16 @@ void SimulationNode::PublishTransforms() {
   if (stamp <= last_tf_stamp_) return;  // tf2 warns about repeated stamps
   last_tf_stamp_ = stamp;
   if (tf_pub_.getNumSubscribers() == 0) return;
-  FillTransforms(*sim_, frames_, stamp, &tf_msg_);
-  tf_pub_.publish(tf_msg_);
+  AppendTransforms(*sim_, frames_, stamp, &tf_msg_);
+  if (++tf_pending_ >= parameters_.max_samples_per_message) FlushSamples();
 }
 
 void SimulationNode::PublishContacts() {
   const ros::Time stamp = StampOf(sim_->time());
   if (contacts_pub_.getNumSubscribers() > 0) {
-    FillContacts(*sim_, last_step_, frames_, &contacts_msg_);
-    contacts_pub_.publish(contacts_msg_);
+    contacts_msg_.steps.emplace_back();
+    FillContacts(*sim_, last_step_, frames_, &contacts_msg_.steps.back());
+    if (++contacts_pending_ >= parameters_.max_samples_per_message) FlushSamples();
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
   FirstContacts(*sim_, &first_contact_);
@@ -388,6 +398,20 @@ void SimulationNode::PublishContacts() {
       wrench_pubs_[i].publish(wrench_msg_);
     }
     wrench_closed_[i] = closed;
+  }
+}
+
+void SimulationNode::FlushSamples() {
+  if (tf_pending_ > 0) {
+    tf_pub_.publish(tf_msg_);
+    tf_msg_.transforms.clear();
+    tf_pending_ = 0;
+  }
+  if (contacts_pending_ > 0) {
+    contacts_msg_.header = contacts_msg_.steps.back().header;
+    contacts_pub_.publish(contacts_msg_);
+    contacts_msg_.steps.clear();
+    contacts_pending_ = 0;
   }
 }
 
@@ -410,6 +434,7 @@ void SimulationNode::PublishClock(bool flush) {
   if (!last_clock_stamp_.isZero() && stamp <= last_clock_stamp_) return;  // monotone
   const Clock::time_point now = Clock::now();
   if (!flush && Seconds(now - last_clock_wall_) < 1.0 / parameters_.clock_rate) return;
+  FlushSamples();  // every sample up to the new time before /clock passes it
   rosgraph_msgs::Clock clock;
   clock.clock = stamp;
   clock_pub_.publish(clock);
@@ -418,6 +443,7 @@ void SimulationNode::PublishClock(bool flush) {
 }
 
 void SimulationNode::AfterReset() {
+  FlushSamples();  // what was sampled before the reset (nothing after a chunk)
   fault_.clear();
   RestartChannels();
   std::fill(wrench_closed_.begin(), wrench_closed_.end(), false);

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """A bag recorded by the launch file (through scripts/record) holds the five recorded topics, with
-message counts equal to the simulated duration times each topic's publish rate, at the sim
+sample counts (stamps on /tf, steps on ~contacts, messages elsewhere) equal to the simulated
+duration times each topic's publish rate, at the sim
 times the rates promise, and a /clock that only advances and is never 0. ~contacts lists closed
 contacts only, named "<first collision>/<second collision>" (the spinning top starts on
 "big_sphere/ground"; an open peg is absent).
@@ -16,6 +17,9 @@ import unittest
 import rosbag
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from ros_session import tf_samples  # noqa: E402
+
 DURATION = 2.0       # [s] of simulated time
 TIME_STEP = 1e-4     # the node's default ~time_step [s]
 RATES = {            # the node's default publish rates [Hz of simulated time]
@@ -54,6 +58,14 @@ class RecordedBag(unittest.TestCase):
     def messages(self, topic):
         return [m for _, m, _ in self.bag.read_messages(topics=[topic])]
 
+    def samples(self, topic):
+        """Per sample: a /tf sample's transforms, a ~contacts step, any other message."""
+        if topic == "/tf":
+            return [s for m in self.messages(topic) for s in tf_samples(m)]
+        if topic == "/nonsmooth_sim/contacts":
+            return [step for m in self.messages(topic) for step in m.steps]
+        return self.messages(topic)
+
     def test_holds_exactly_the_recorded_topics(self):
         topics = set(self.bag.get_type_and_topic_info().topics)
         self.assertEqual(topics, RECORDED)
@@ -61,7 +73,7 @@ class RecordedBag(unittest.TestCase):
     def test_counts_match_the_publish_rates(self):
         info = self.bag.get_type_and_topic_info().topics
         for topic, rate in RATES.items():
-            self.assertEqual(info[topic].message_count, round(DURATION * rate), topic)
+            self.assertEqual(len(self.samples(topic)), round(DURATION * rate), topic)
         # /diagnostics is published at ~diagnostics_rate in wall time: at least one
         self.assertGreaterEqual(info["/diagnostics"].message_count, 1)
 
@@ -69,13 +81,13 @@ class RecordedBag(unittest.TestCase):
         # ~contacts every 10 steps, ~state every 100 steps, none missing, none repeated
         for topic in ("/nonsmooth_sim/contacts", "/nonsmooth_sim/state"):
             period = round(1.0 / (RATES[topic] * TIME_STEP))
-            steps = [step_of(m.sim_time) for m in self.messages(topic)]
+            steps = [step_of(m.sim_time) for m in self.samples(topic)]
             self.assertEqual(steps, [period * (k + 1) for k in range(len(steps))], topic)
-        stamps = [step_of(m.transforms[0].header.stamp.to_sec()) for m in self.messages("/tf")]
+        stamps = [step_of(s[0].header.stamp.to_sec()) for s in self.samples("/tf")]
         self.assertEqual(stamps, [10 * (k + 1) for k in range(len(stamps))])
 
     def test_contacts_are_the_closed_ones_by_name(self):
-        messages = self.messages("/nonsmooth_sim/contacts")
+        messages = self.samples("/nonsmooth_sim/contacts")
         self.assertTrue(messages)
         listed = 0
         for m in messages:

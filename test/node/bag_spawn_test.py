@@ -3,7 +3,7 @@
 file, two tops spawned by scripts/spawn_tops (its rospy client of ~spawn_urdf_model and
 ~set_model_state) and one of them deleted by ~delete_model. In the bag's /tf, the deleted top's
 frame appears after the spawn and stops at the deletion (its last stamp is the last publish before
-it), the other spawned top's and the start-up top's go on to the end; every /tf message is stamped
+it), the other spawned top's and the start-up top's go on to the end; every /tf sample is stamped
 at a multiple of the 10-step tf period, and each top's frame moves (they spin and precess).
 
 Run by ctest: test/node/bag_spawn_test.py --build-dir BUILD
@@ -19,7 +19,7 @@ import rosbag
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from ros_session import NODE, Session, wait_for  # noqa: E402
+from ros_session import NODE, Session, tf_samples, wait_for  # noqa: E402
 
 TIME_STEP = 1e-4   # the node's default ~time_step [s]
 TF_PERIOD = 10     # steps: /tf at 1 kHz of sim time
@@ -58,7 +58,7 @@ class SpawnDeleteBag(unittest.TestCase):
 
             def on_tf(message):
                 last[0] = time.monotonic()
-                latest[0] = step_of(message.transforms[0].header.stamp.to_sec())
+                latest[0] = step_of(message.transforms[-1].header.stamp.to_sec())
 
             tf = rospy.Subscriber("/tf", TFMessage, on_tf, queue_size=100000)
             wait_for(lambda: ("/tf", "/record") in session.outgoing_links(NODE), 60,
@@ -67,7 +67,7 @@ class SpawnDeleteBag(unittest.TestCase):
             step = rospy.ServiceProxy(NODE + "/step", StepSimulation)
 
             def run(steps):
-                # in calls of CHUNK steps (CHUNK / TF_PERIOD messages), each once the driver has
+                # in calls of CHUNK steps (CHUNK / TF_PERIOD samples), each once the driver has
                 # received the last one's /tf: ~step publishes as fast as it steps, and rosbag
                 # record (a parallel subscriber) drops beyond a queue of 100 messages
                 for _ in range(steps // CHUNK):
@@ -100,11 +100,12 @@ class SpawnDeleteBag(unittest.TestCase):
         cls.stamps = []
         with rosbag.Bag(cls.bag_path) as bag:
             for _, m, _ in bag.read_messages(topics=["/tf"]):
-                cls.stamps.append(step_of(m.transforms[0].header.stamp.to_sec()))
-                for t in m.transforms:
-                    cls.frames.setdefault(t.child_frame_id, []).append(
-                        (step_of(t.header.stamp.to_sec()), t.transform.translation.x,
-                         t.transform.translation.y))
+                for sample in tf_samples(m):
+                    cls.stamps.append(step_of(sample[0].header.stamp.to_sec()))
+                    for t in sample:
+                        cls.frames.setdefault(t.child_frame_id, []).append(
+                            (step_of(t.header.stamp.to_sec()), t.transform.translation.x,
+                             t.transform.translation.y))
 
     @classmethod
     def tearDownClass(cls):
@@ -112,7 +113,7 @@ class SpawnDeleteBag(unittest.TestCase):
         if os.path.exists(cls.bag_path + ".log"):
             os.remove(cls.bag_path + ".log")
 
-    def test_every_tf_message_is_at_a_tf_period(self):
+    def test_every_tf_sample_is_at_a_tf_period(self):
         self.assertEqual(self.stamps, [TF_PERIOD * (k + 1) for k in range(len(self.stamps))])
         self.assertEqual(self.stamps[-1], BEFORE + WITH + AFTER)
 

@@ -232,7 +232,7 @@ TEST(Conversions, WrenchSumsTheContactsOfOneCollider) {
   const FrameNames frames = MakeFrameNames(sim.scene(), "world");
   ASSERT_EQ(frames.contacts, (std::vector<std::string>{"lower_contact", "upper_contact"}));
   tf2_msgs::TFMessage tf;
-  FillTransforms(sim, frames, StampOf(sim.time()), &tf);
+  AppendTransforms(sim, frames, StampOf(sim.time()), &tf);
   ASSERT_EQ(tf.transforms.size(), 4u);  // two links, two slots
   const auto& lower_frame = tf.transforms[2];
   ASSERT_EQ(lower_frame.child_frame_id, "lower_contact");
@@ -271,7 +271,7 @@ TEST(Conversions, TransformsPlaceTheLinkAndTheContactFrames) {
   const Simulator sim = RestingTop(5);
   const FrameNames frames = MakeFrameNames(sim.scene(), "odom_free");
   tf2_msgs::TFMessage tf;
-  FillTransforms(sim, frames, StampOf(sim.time()), &tf);
+  AppendTransforms(sim, frames, StampOf(sim.time()), &tf);
   ASSERT_EQ(tf.transforms.size(), 3u);
   EXPECT_EQ(tf.transforms[0].header.frame_id, "odom_free");
   EXPECT_EQ(tf.transforms[0].child_frame_id, "tippe_top");
@@ -294,6 +294,28 @@ TEST(Conversions, TransformsPlaceTheLinkAndTheContactFrames) {
   for (const auto& t : tf.transforms) {
     EXPECT_EQ(t.header.stamp, StampOf(sim.time()));
     EXPECT_EQ(t.header.frame_id, "odom_free");
+  }
+}
+
+TEST(Conversions, TransformsOfALaterStampFollowTheEarlierOnes) {
+  // /tf batches several samples in one message: a second append keeps the first one intact
+  Simulator sim = RestingTop(5);
+  const FrameNames frames = MakeFrameNames(sim.scene(), "world");
+  tf2_msgs::TFMessage tf;
+  AppendTransforms(sim, frames, StampOf(sim.time()), &tf);
+  const tf2_msgs::TFMessage first = tf;
+  const ros::Time first_stamp = StampOf(sim.time());
+  for (int i = 0; i < 10; ++i) sim.Step();
+  AppendTransforms(sim, frames, StampOf(sim.time()), &tf);
+  tf2_msgs::TFMessage second;
+  AppendTransforms(sim, frames, StampOf(sim.time()), &second);
+  ASSERT_EQ(tf.transforms.size(), first.transforms.size() + second.transforms.size());
+  ASSERT_GT(StampOf(sim.time()), first_stamp);
+  for (std::size_t i = 0; i < first.transforms.size(); ++i) {
+    EXPECT_EQ(tf.transforms[i], first.transforms[i]) << i;
+  }
+  for (std::size_t i = 0; i < second.transforms.size(); ++i) {
+    EXPECT_EQ(tf.transforms[first.transforms.size() + i], second.transforms[i]) << i;
   }
 }
 

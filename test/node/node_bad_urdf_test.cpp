@@ -142,6 +142,9 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      {"relaxation", "[0.001, 2)"}, "relaxation");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_9", urdf, "_initial/spin:=1.0e+300"}),
                      {"spin", "<= 10000 rad/s"}, "initial/spin");
+  ExpectOneErrorLine(
+      RunNode({"__name:=bad_parameter_10", urdf, "_max_samples_per_message:=0"}),
+      {"~max_samples_per_message", ">= 1 and <= 10000", "got 0"}, "max_samples_per_message");
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");

@@ -40,7 +40,7 @@ double FirstAbove(const Times& t, const Thetas& theta, double level) {
 TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessages) {
   ros::NodeHandle nh;
   Recorder<SimulationState> states(nh, kNode + "state", 1000000);
-  Recorder<ContactInfoArray> contacts(nh, kNode + "contacts", 1000000);
+  Recorder<ContactSteps> contacts(nh, kNode + "contacts", 1000000);
   Recorder<tf2_msgs::TFMessage> tf(nh, "/tf", 1000000);
 
   // the headless reference with the node's settings
@@ -80,8 +80,9 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
       },
       20.0));
 
-  // Nothing dropped: roscpp numbers the messages of each topic (header.seq) and the sim times
-  // step on by the advertised period (~state every step, ~contacts and /tf every 10 steps).
+  // Nothing dropped: roscpp numbers the messages of ~state (header.seq), and the sim times step
+  // on by the advertised period (~state every step; the samples of ~contacts and /tf, several per
+  // message, every 10 steps).
   auto step_of = [&](double sim_time) { return std::llround(sim_time / dt); };
   for (std::size_t i = 1; i < received.size(); ++i) {
     ASSERT_EQ(received[i].header.seq, received[i - 1].header.seq + 1) << "gap at " << i;
@@ -89,7 +90,6 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   }
   const std::vector<ContactInfoArray> contact_messages = contacts.Messages();
   for (std::size_t i = 1; i < contact_messages.size(); ++i) {
-    ASSERT_EQ(contact_messages[i].header.seq, contact_messages[i - 1].header.seq + 1) << i;
     ASSERT_EQ(step_of(contact_messages[i].sim_time),
               step_of(contact_messages[i - 1].sim_time) + kContactsPeriod) << i;
   }

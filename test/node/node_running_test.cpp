@@ -61,7 +61,7 @@ TEST(NodeRunning, ClockAdvancesMonotonicallyAndIsNeverZero) {
 TEST(NodeRunning, RestingTopCarriesItsWeightOnTheBigSphere) {
   ros::NodeHandle nh;
   const double dt = Call<GetSolverProperties>(nh, kNode + "get_solver_properties").response.time_step;
-  Recorder<ContactInfoArray> contacts(nh, kNode + "contacts");
+  Recorder<ContactSteps> contacts(nh, kNode + "contacts");
   Recorder<geometry_msgs::WrenchStamped> big_wrench(nh, kNode + "wrench/big_sphere");
   Recorder<geometry_msgs::WrenchStamped> peg_wrench(nh, kNode + "wrench/peg_sphere");
   // upright and at rest, resting on the big sphere

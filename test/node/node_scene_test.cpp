@@ -24,7 +24,7 @@ double VerticalSpin(const SimulationState& state) { return state.bodies.at(0).tw
 
 TEST(NodeScene, CoinStartsFromItsYamlAndSpinsDownOnAFacePatch) {
   ros::NodeHandle nh;
-  Recorder<ContactInfoArray> contacts(nh, kNode + "contacts");
+  Recorder<ContactSteps> contacts(nh, kNode + "contacts");
   ASSERT_TRUE(WaitFor([&] { return contacts.Connected(); }, 20.0));
 
   // the start is the YAML's, not the URDF pose at rest

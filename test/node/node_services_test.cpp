@@ -99,7 +99,7 @@ class NodeServices : public testing::Test {
 };
 
 TEST_F(NodeServices, FrictionSetSwitchedMidRunChangesTheLawAndTheDynamics) {
-  Recorder<ContactInfoArray> contacts(nh_, kNode + "contacts");
+  Recorder<ContactSteps> contacts(nh_, kNode + "contacts");
   WarmUp(contacts, 10);
   ASSERT_TRUE(Reset().success);
   const StepSimulation before = Step(3000);
@@ -173,7 +173,7 @@ TEST_F(NodeServices, FrictionSetOfOneCollisionOrOneContact) {
   EXPECT_EQ(SetOf("peg_sphere/ground"), "sphere");
 
   // a contact name selects that contact only: the collision's own set stays
-  Recorder<ContactInfoArray> contacts(nh_, kNode + "contacts");
+  Recorder<ContactSteps> contacts(nh_, kNode + "contacts");
   WarmUp(contacts, 10);
   ResetState upright;  // at rest on the big sphere
   upright.request.inclination = {0.0};

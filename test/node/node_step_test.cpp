@@ -1,6 +1,6 @@
 // Paused: no TF and no clock change; ~step N advances the sim time by exactly N·Δt (also after
-// a time step change) and publishes TF at the advertised rate; ~step is refused while running
-// and for N = 0.
+// a time step change) and publishes TF at the advertised rate, several stamps per message up to
+// ~max_samples_per_message; ~step is refused while running and for N = 0.
 #include <gtest/gtest.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
@@ -94,6 +94,13 @@ TEST_F(NodeStep, StepAdvancesByWholeTimeStepsAndPublishesTf) {
     EXPECT_EQ(gap.toNSec(), Nanoseconds(tf_period * dt)) << i;
   }
   EXPECT_LE(messages.back().transforms[0].header.stamp, second.response.stamp);
+  // batched: the first call's samples (one chunk) fill messages of ~max_samples_per_message
+  // stamps, and no message carries more
+  int max_samples = 0;
+  ASSERT_TRUE(nh_.getParam(kNode + "max_samples_per_message", max_samples));
+  ASSERT_GT(expected, static_cast<std::size_t>(max_samples));
+  EXPECT_EQ(tf.LargestMessage(), static_cast<std::size_t>(max_samples));
+  EXPECT_GE(tf.MessageCount(), (expected + max_samples - 1) / max_samples);
 
   // paused again: nothing more
   const std::size_t tf_count = tf.Count();

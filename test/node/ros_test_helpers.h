@@ -5,13 +5,16 @@
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "nonsmooth_sim/ContactInfoArray.h"
+#include "nonsmooth_sim/ContactSteps.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
 #include "nonsmooth_sim/GetSolverProperties.h"
 #include "nonsmooth_sim/SimulationState.h"
@@ -33,14 +36,50 @@ inline bool WaitFor(const std::function<bool()>& condition, double timeout) {
   return true;
 }
 
-/// Keeps every message of one topic (thread safe; callbacks run in an AsyncSpinner).
+/// The samples a message of type M carries: the message itself, except for the topics the node
+/// batches (~max_samples_per_message).
+template <typename M>
+struct SamplesOf {
+  using Sample = M;
+  static void Split(const M& m, std::vector<Sample>* out) { out->push_back(m); }
+};
+
+/// ~contacts: one ContactInfoArray per step.
+template <>
+struct SamplesOf<ContactSteps> {
+  using Sample = ContactInfoArray;
+  static void Split(const ContactSteps& m, std::vector<Sample>* out) {
+    out->insert(out->end(), m.steps.begin(), m.steps.end());
+  }
+};
+
+/// /tf: one TFMessage per run of equal stamps (a message may carry several stamps).
+template <>
+struct SamplesOf<tf2_msgs::TFMessage> {
+  using Sample = tf2_msgs::TFMessage;
+  static void Split(const tf2_msgs::TFMessage& m, std::vector<Sample>* out) {
+    for (std::size_t i = 0; i < m.transforms.size(); ++i) {
+      if (i == 0 || m.transforms[i].header.stamp != m.transforms[i - 1].header.stamp) {
+        out->emplace_back();
+      }
+      out->back().transforms.push_back(m.transforms[i]);
+    }
+  }
+};
+
+/// Keeps every sample of one topic (see SamplesOf) and counts its messages (thread safe;
+/// callbacks run in an AsyncSpinner).
 template <typename M>
 class Recorder {
  public:
+  using Sample = typename SamplesOf<M>::Sample;
   Recorder(ros::NodeHandle& nh, const std::string& topic, int queue = 100000) {
     sub_ = nh.subscribe<M>(topic, queue, [this](const typename M::ConstPtr& m) {
       std::lock_guard<std::mutex> lock(mutex_);
-      messages_.push_back(*m);
+      const std::size_t before = messages_.size();
+      SamplesOf<M>::Split(*m, &messages_);
+      ++message_count_;
+      largest_message_ = std::max(largest_message_, messages_.size() - before);
     });
   }
   // Unsubscribes before the members go: a spinner thread may be inside the callback, and
@@ -48,9 +87,20 @@ class Recorder {
   ~Recorder() { sub_.shutdown(); }
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
-  std::vector<M> Messages() const {
+  /// The samples so far, in arrival order.
+  std::vector<Sample> Messages() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return messages_;
+  }
+  /// The messages (not samples) so far.
+  std::size_t MessageCount() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return message_count_;
+  }
+  /// The most samples one message carried so far.
+  std::size_t LargestMessage() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return largest_message_;
   }
   std::size_t Count() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -59,16 +109,18 @@ class Recorder {
   void Clear() {
     std::lock_guard<std::mutex> lock(mutex_);
     messages_.clear();
+    message_count_ = 0;
+    largest_message_ = 0;
   }
   bool WaitForCount(std::size_t n, double timeout) const {
     return WaitFor([&] { return Count() >= n; }, timeout);
   }
-  /// Waits until a message satisfies `predicate`.
-  bool WaitForMessage(const std::function<bool(const M&)>& predicate, double timeout) const {
+  /// Waits until a sample satisfies `predicate`.
+  bool WaitForMessage(const std::function<bool(const Sample&)>& predicate, double timeout) const {
     return WaitFor(
         [&] {
           std::lock_guard<std::mutex> lock(mutex_);
-          for (const M& m : messages_) {
+          for (const Sample& m : messages_) {
             if (predicate(m)) return true;
           }
           return false;
@@ -80,7 +132,9 @@ class Recorder {
  private:
   ros::Subscriber sub_;
   mutable std::mutex mutex_;
-  std::vector<M> messages_;
+  std::vector<Sample> messages_;
+  std::size_t message_count_ = 0;
+  std::size_t largest_message_ = 0;
 };
 
 /// Calls service `name` (waiting up to 20 s for it); a transport failure fails the test.

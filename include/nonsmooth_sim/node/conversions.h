@@ -55,9 +55,10 @@ void FillState(const Simulator& sim, bool paused, const std::string& world_frame
 void FillContacts(const Simulator& sim, const StepStatistics& last_step, const FrameNames& frames,
                   ContactInfoArray* msg);
 
-/// /tf: world → each body's link, and world → each slot's frame (see FrameNames).
-void FillTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
-                    tf2_msgs::TFMessage* msg);
+/// /tf: appends world → each body's link, and world → each slot's frame (see FrameNames), all
+/// stamped `stamp`, after the transforms msg already holds (a message may carry several stamps).
+void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
+                      tf2_msgs::TFMessage* msg);
 
 /// The contact wrench λ = Λ/Δt on slot `slot`'s collider, summed over its closed contacts, about
 /// and in the axes of its slot frame (one contact: the force and the drilling torque at it). Zero

@@ -19,6 +19,9 @@ using scene_io::UrdfScene;
 using scene_io::UrdfSceneOptions;
 using scene_io::ValidateUrdfSceneOptions;
 
+/// The largest ~max_samples_per_message.
+constexpr int kMaxSamplesPerMessage = 10000;
+
 /// Publish rates are in Hz of simulated time (a message every round(1/(rate·Δt)) steps, at most
 /// one per step; 0 = never) unless marked wall.
 struct NodeParameters {
@@ -55,6 +58,11 @@ struct NodeParameters {
   /// time; the simulation slows down instead of skipping messages (a cap on the real-time
   /// factor). 0 = no limit. For subscribers with small queues, e.g. rosbag record (100).
   double max_wall_publish_rate = 0.0;
+  /// ~max_samples_per_message: /tf and ~contacts carry every sample due in one chunk of stepping
+  /// (TF: several stamps in one TFMessage; ~contacts: several steps in one ContactSteps), sent at
+  /// the chunk's end, before /clock passes them, or when this many are pending; 1 ≤ n ≤ 10 000.
+  /// 1 = one message per sample. Each message costs roscpp a send and a wake-up per subscriber.
+  int max_samples_per_message = 100;
   double marker_force_scale = 0.5;     ///< ~marker_force_scale [m/N]: arrow length per force
   double marker_torque_scale = 5000.0; ///< ~marker_torque_scale [m/(N m)]: per drilling torque
 };

@@ -24,6 +24,7 @@
 
 #include "nonsmooth_sim/ApplyBodyWrench.h"
 #include "nonsmooth_sim/BodyRequest.h"
+#include "nonsmooth_sim/ContactSteps.h"
 #include "nonsmooth_sim/DeleteModel.h"
 #include "nonsmooth_sim/GetFrictionSet.h"
 #include "nonsmooth_sim/GetModelProperties.h"
@@ -108,6 +109,9 @@ class SimulationNode {
   /// Steps until `budget` steps are done, the deadline passes or the run pauses; returns the steps.
   std::int64_t RunChunk(std::int64_t budget, Clock::time_point deadline);
   void StepOnce();
+  /// After a chunk of steps that began at `start`: the pending samples sent, the chunk's wall
+  /// time counted, and the end-of-run log line if ~duration was reached in it.
+  void FinishChunk(Clock::time_point start);
   /// The end-of-run log line (~duration reached), once the chunk's wall time is counted.
   void LogSummaryIfDue();
   /// [s] of wall time spent unpaused up to `now`.
@@ -124,6 +128,8 @@ class SimulationNode {
   void PublishDue();
   void PublishTransforms();
   void PublishContacts();
+  /// Sends the pending /tf and ~contacts samples, each topic as one message.
+  void FlushSamples();
   void PublishState();
   void PublishMarkers();
   void PublishClock(bool flush);
@@ -221,8 +227,9 @@ class SimulationNode {
   std::int64_t faults_ = 0;  ///< failed steps since start
   bool summary_due_ = false;        ///< ~duration reached: LogSummaryIfDue logs the run
   // reused messages
-  tf2_msgs::TFMessage tf_msg_;
-  ContactInfoArray contacts_msg_;
+  tf2_msgs::TFMessage tf_msg_;       ///< the pending TF samples (FlushSamples sends them)
+  ContactSteps contacts_msg_;        ///< the pending ~contacts samples
+  int tf_pending_ = 0, contacts_pending_ = 0;  ///< samples in them
   SimulationState state_msg_;
   visualization_msgs::MarkerArray markers_msg_;
   geometry_msgs::WrenchStamped wrench_msg_;
