@@ -227,6 +227,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   }
   p.simulator.gyroscopic = *gyroscopic;
   r.Bool("gap_correction", &p.simulator.gap_correction);
+  r.Bool("extrapolate_warm_start", &p.simulator.extrapolate_warm_start);
 
   // initial conditions
   p.initial_state = ReadInitialState(r);
