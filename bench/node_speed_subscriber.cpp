@@ -1,7 +1,8 @@
 // node_speed_subscriber: the subscriber of scripts/node-speed. Subscribes to /tf and
 // /nonsmooth_sim/contacts with queues large enough that nothing is dropped (every message is
 // deserialized, as in a real consumer), counts the samples (stamps, steps) that arrive and
-// prints the counts on shutdown (SIGINT): "received tf <n> contacts <m>". Not a test and not a Google Benchmark.
+// prints the counts on shutdown (SIGINT): "received tf <n> contacts <m>". Not a test and not a
+// Google Benchmark.
 #include <ros/ros.h>
 #include <tf2_msgs/TFMessage.h>
 

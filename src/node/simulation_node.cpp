@@ -379,7 +379,10 @@ void SimulationNode::PublishTransforms() {
   last_tf_stamp_ = stamp;
   if (tf_pub_.getNumSubscribers() == 0) return;
   AppendTransforms(*sim_, frames_, stamp, &tf_msg_);
-  if (++tf_pending_ >= parameters_.max_samples_per_message) FlushSamples();
+  if (++tf_pending_ >= parameters_.max_samples_per_message ||
+      tf_msg_.transforms.size() >= kMaxItemsPerMessage) {
+    FlushSamples();
+  }
 }
 
 void SimulationNode::PublishContacts() {
@@ -387,7 +390,11 @@ void SimulationNode::PublishContacts() {
   if (contacts_pub_.getNumSubscribers() > 0) {
     contacts_msg_.steps.emplace_back();
     FillContacts(*sim_, last_step_, frames_, &contacts_msg_.steps.back());
-    if (++contacts_pending_ >= parameters_.max_samples_per_message) FlushSamples();
+    pending_contacts_ += contacts_msg_.steps.back().contacts.size();
+    if (++contacts_pending_ >= parameters_.max_samples_per_message ||
+        pending_contacts_ >= kMaxItemsPerMessage) {
+      FlushSamples();
+    }
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
   FirstContacts(*sim_, &first_contact_);
@@ -412,6 +419,7 @@ void SimulationNode::FlushSamples() {
     contacts_pub_.publish(contacts_msg_);
     contacts_msg_.steps.clear();
     contacts_pending_ = 0;
+    pending_contacts_ = 0;
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <ros/node_handle.h>
 
+#include <cstddef>
 #include <string>
 
 #include "nonsmooth_sim/core/simulator.h"
@@ -21,6 +22,9 @@ using scene_io::ValidateUrdfSceneOptions;
 
 /// The largest ~max_samples_per_message.
 constexpr int kMaxSamplesPerMessage = 10000;
+/// A /tf or ~contacts message is also sent once it holds this many transforms or contacts: a large
+/// world (1024 tops: 3072 transforms per sample) gets one sample per message, not megabytes.
+constexpr std::size_t kMaxItemsPerMessage = 4096;
 
 /// Publish rates are in Hz of simulated time (a message every round(1/(rate·Δt)) steps, at most
 /// one per step; 0 = never) unless marked wall.
@@ -60,8 +64,8 @@ struct NodeParameters {
   double max_wall_publish_rate = 0.0;
   /// ~max_samples_per_message: /tf and ~contacts carry every sample due in one chunk of stepping
   /// (TF: several stamps in one TFMessage; ~contacts: several steps in one ContactSteps), sent at
-  /// the chunk's end, before /clock passes them, or when this many are pending; 1 ≤ n ≤ 10 000.
-  /// 1 = one message per sample. Each message costs roscpp a send and a wake-up per subscriber.
+  /// the chunk's end, before /clock passes them, or when this many are pending (or
+  /// kMaxItemsPerMessage transforms or contacts); 1 ≤ n ≤ 10 000. 1 = one message per sample. Each message costs roscpp a send and a wake-up per subscriber.
   int max_samples_per_message = 100;
   double marker_force_scale = 0.5;     ///< ~marker_force_scale [m/N]: arrow length per force
   double marker_torque_scale = 5000.0; ///< ~marker_torque_scale [m/(N m)]: per drilling torque
