@@ -20,6 +20,8 @@ constexpr double kMaxChunkWall = 0.01;
 // With a real-time factor > 0, a backlog longer than this (wall time the integrator could not
 // keep up with) is dropped instead of being caught up in a burst [s].
 constexpr double kMaxBacklogWall = 0.1;
+// The smallest publisher queue of /tf and ~contacts [messages].
+constexpr int kMinBatchedQueue = 100;
 // How often (in steps) a long run checks the wall clock.
 constexpr std::int64_t kWallCheckSteps = 16;
 // A step with more solver iterations than this checks the wall clock at once.
@@ -80,8 +82,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   // latched: a node joining while paused learns the time at once (and never sees 0); the same
   // queue as the other topics (a queue of 10 overflowed under load when recorded)
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", queue, /*latch=*/true);
-  tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", queue);
-  contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", queue);
+  // /tf and ~contacts carry up to ~max_samples_per_message samples per message: their queues hold
+  // about ~queue_size samples, not ~queue_size of their larger messages (a slow subscriber kept
+  // 300 MB queued), but at least kMinBatchedQueue messages (10 dropped samples under load)
+  const int batched_queue =
+      std::max(kMinBatchedQueue, (queue + parameters_.max_samples_per_message - 1) /
+                                     parameters_.max_samples_per_message);
+  tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", batched_queue);
+  contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", batched_queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
   for (int collider : frames_.slots) {

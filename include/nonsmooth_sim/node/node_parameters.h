@@ -57,7 +57,8 @@ struct NodeParameters {
   double diagnostics_rate = 1.0;  ///< ~diagnostics_rate [wall Hz]: /diagnostics, > 0
   double wall_update_rate = 200.0;  ///< ~wall_update_rate [wall Hz]: how often the integrator
                                     ///< catches up with wall time when real_time_factor > 0
-  int queue_size = 1000;          ///< ~queue_size: publisher queues, ≥ 1
+  int queue_size = 1000;          ///< ~queue_size: publisher queues, ≥ 1 (/tf and ~contacts:
+                                  ///< ⌈queue_size / max_samples_per_message⌉ messages, ≥ 100)
   /// ~max_wall_publish_rate [wall Hz]: no topic is published more often than this in wall
   /// time; the simulation slows down instead of skipping messages (a cap on the real-time
   /// factor). 0 = no limit. For subscribers with small queues, e.g. rosbag record (100).
