@@ -387,7 +387,7 @@ void SimulationNode::PublishTransforms() {
   last_tf_stamp_ = stamp;
   if (tf_pub_.getNumSubscribers() == 0) return;
   AppendTransforms(*sim_, frames_, stamp, &tf_msg_);
-  if (++tf_pending_ >= parameters_.max_samples_per_message ||
+  if (++tf_samples_ >= parameters_.max_samples_per_message ||
       tf_msg_.transforms.size() >= kMaxItemsPerMessage) {
     FlushSamples();
   }
@@ -398,9 +398,9 @@ void SimulationNode::PublishContacts() {
   if (contacts_pub_.getNumSubscribers() > 0) {
     contacts_msg_.steps.emplace_back();
     FillContacts(*sim_, last_step_, frames_, &contacts_msg_.steps.back());
-    pending_contacts_ += contacts_msg_.steps.back().contacts.size();
-    if (++contacts_pending_ >= parameters_.max_samples_per_message ||
-        pending_contacts_ >= kMaxItemsPerMessage) {
+    pending_contact_count_ += contacts_msg_.steps.back().contacts.size();
+    if (++contacts_samples_ >= parameters_.max_samples_per_message ||
+        pending_contact_count_ >= kMaxItemsPerMessage) {
       FlushSamples();
     }
   }
@@ -417,17 +417,17 @@ void SimulationNode::PublishContacts() {
 }
 
 void SimulationNode::FlushSamples() {
-  if (tf_pending_ > 0) {
+  if (tf_samples_ > 0) {
     tf_pub_.publish(tf_msg_);
     tf_msg_.transforms.clear();
-    tf_pending_ = 0;
+    tf_samples_ = 0;
   }
-  if (contacts_pending_ > 0) {
+  if (contacts_samples_ > 0) {
     contacts_msg_.header = contacts_msg_.steps.back().header;
     contacts_pub_.publish(contacts_msg_);
     contacts_msg_.steps.clear();
-    contacts_pending_ = 0;
-    pending_contacts_ = 0;
+    contacts_samples_ = 0;
+    pending_contact_count_ = 0;
   }
 }
 

@@ -229,8 +229,8 @@ class SimulationNode {
   // reused messages
   tf2_msgs::TFMessage tf_msg_;       ///< the pending TF samples (FlushSamples sends them)
   ContactSteps contacts_msg_;        ///< the pending ~contacts samples
-  int tf_pending_ = 0, contacts_pending_ = 0;  ///< samples in them
-  std::size_t pending_contacts_ = 0;            ///< contacts in contacts_msg_
+  int tf_samples_ = 0, contacts_samples_ = 0;  ///< samples in them
+  std::size_t pending_contact_count_ = 0;       ///< contacts in contacts_msg_
   SimulationState state_msg_;
   visualization_msgs::MarkerArray markers_msg_;
   geometry_msgs::WrenchStamped wrench_msg_;
