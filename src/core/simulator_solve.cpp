@@ -11,6 +11,17 @@ namespace {
 // the solver tolerance is tighter: below it the change is round-off.
 constexpr double kGyroscopicRoundOff = 4.0 * std::numeric_limits<double>::epsilon();
 
+// Warm starts extrapolated from a contact's last percussions Λ^{n-1}, Λ^{n-2}, Λ^{n-3}:
+// linear 2Λ^{n-1} - Λ^{n-2}, quadratic 3(Λ^{n-1} - Λ^{n-2}) + Λ^{n-3}.
+template <typename Memory>
+Eigen::Vector4d LinearStart(const Memory& m) {
+  return 2.0 * m.percussion - m.percussion_before;
+}
+template <typename Memory>
+Eigen::Vector4d QuadraticStart(const Memory& m) {
+  return 3.0 * (m.percussion - m.percussion_before) + m.percussion_before2;
+}
+
 }  // namespace
 
 void Simulator::ApplyImpulses(const Island& island) {
@@ -73,7 +84,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     if (!warm) {
       start.setZero();
     } else if (extrapolating && memory.converged && memory.closed_before == step_count_ - 2) {
-      start = 2.0 * memory.percussion - memory.percussion_before;
+      start = memory.quadratic_served ? QuadraticStart(memory) : LinearStart(memory);
     } else {
       start = memory.percussion;
     }
@@ -184,9 +195,26 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
                      c.report.dimension > 1;
     memory.converged = island_stats_.converged;
     memory.tangent1 = c.report.frame.tangent1;
+    // the next start is quadratic if that would have been the closer start of this solve, in a
+    // smooth stretch of a contact alone in its island: closed in the last three steps, this
+    // solve converged within two iterations (not an impact, a stick-slip switch or a slow
+    // drilling mode, where the quadratic's larger weights on the solver's round-off make the
+    // start worse); alone, as its percussion is then unique (several contacts can share a load
+    // in many ways, and the shares wander: the two rolling feet of warm_start_test took twice
+    // the iterations)
+    memory.quadratic_served = false;
+    if (m == 1 && island_stats_.converged && island_stats_.iterations <= 2 &&
+        memory.closed_step == step_count_ - 1 && memory.closed_before == step_count_ - 2 &&
+        memory.closed_before2 == step_count_ - 3) {
+      const Eigen::Vector4d& result = c.report.percussion;
+      memory.quadratic_served = (QuadraticStart(memory) - result).cwiseAbs().maxCoeff() <
+                                (LinearStart(memory) - result).cwiseAbs().maxCoeff();
+    }
+    memory.percussion_before2 = memory.percussion_before;
     memory.percussion_before = memory.percussion;
     memory.percussion = c.report.percussion;
     if (any_exact) memory.rim_hint = rim_hints_[static_cast<std::size_t>(k)];
+    memory.closed_before2 = memory.closed_before;
     memory.closed_before = memory.closed_step;
     memory.closed_step = step_count_;
   }

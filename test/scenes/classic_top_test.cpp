@@ -21,6 +21,7 @@
 // above ½Δt²aᵀΘa with the contact closed), the implicit one does not (mean tilt 0.2012).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -165,6 +166,38 @@ TEST(ClassicTop, WithFrictionTheTipSlidesAndTheTopRises) {
   EXPECT_LE(r.max_energy_excess, 0.0);
   EXPECT_LT(r.max_penetration, 1.1 * kGapCorrectionSlop);
   EXPECT_TRUE(r.finite);
+}
+
+// The warm start on a smooth stretch of one contact (simulator.h): the tip slides on its one
+// contact while the percussion turns with the precession, smoothly, so a start extrapolated from
+// the last three percussions is within the solver's tolerance nearly every step. Measured over
+// 1 s: 1.15 iterations per step against the plain start's 2.13; the linear extrapolation alone
+// took 2.03 (its error, the percussion's curvature, is above the tolerance here).
+TEST(ClassicTop, SmoothSlidingNeedsAboutOneIterationPerStep) {
+  const Scene scene = LoadShippedScene("classic_top", {});
+  long iterations[2] = {0, 0};
+  std::vector<BodyState> states[2];
+  for (int extrapolate = 0; extrapolate < 2; ++extrapolate) {
+    SimulatorOptions options = TopOptions();
+    options.extrapolate_warm_start = extrapolate == 1;
+    Simulator sim(scene, options);
+    StepStatistics stats;
+    for (int k = 0; k < 10000; ++k) {
+      sim.Step(&stats);
+      ASSERT_TRUE(stats.state_finite);
+      ASSERT_TRUE(stats.solver.converged) << "step " << k;
+      iterations[extrapolate] += stats.solver.iterations;
+      states[extrapolate].push_back(sim.state()[0]);
+    }
+  }
+  // the start only decides where the iteration begins: the same motion within the tolerance
+  double largest = 0.0;
+  for (std::size_t k = 0; k < states[0].size(); ++k) {
+    largest = std::max(largest, (states[0][k].position - states[1][k].position).norm());
+  }
+  EXPECT_LT(largest, 1e-6);
+  EXPECT_LT(static_cast<double>(iterations[1]), 0.7 * static_cast<double>(iterations[0]))
+      << "plain " << iterations[0] << ", extrapolated " << iterations[1];
 }
 
 }  // namespace
