@@ -328,20 +328,10 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
 
   Prepare(problem, options, *lambda, rim_hints);
   // one contact (a top on the ground) is the common island: its loops unrolled
-  const bool single = m == 1;
-  switch (options.type) {
-    case SolverType::kJacobi:
-      single ? Iterate<SolverType::kJacobi, true>(options, statistics)
-             : Iterate<SolverType::kJacobi, false>(options, statistics);
-      break;
-    case SolverType::kModifiedJacobi:
-      single ? Iterate<SolverType::kModifiedJacobi, true>(options, statistics)
-             : Iterate<SolverType::kModifiedJacobi, false>(options, statistics);
-      break;
-    case SolverType::kGaussSeidel:
-      single ? Iterate<SolverType::kGaussSeidel, true>(options, statistics)
-             : Iterate<SolverType::kGaussSeidel, false>(options, statistics);
-      break;
+  if (m == 1) {
+    IterateOf<true>(options, statistics);
+  } else {
+    IterateOf<false>(options, statistics);
   }
 
   for (std::size_t i = 0; i < m; ++i) {
@@ -354,10 +344,48 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
   }
 }
 
-void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOptions& options,
-                            const std::vector<Eigen::Vector4d>& lambda,
-                            const std::vector<double>* rim_hints) {
-  const std::size_t m = problem.laws.size();
+void ContactSolver::SolveOnePrevalidated(const Eigen::Matrix4d& G, const Eigen::Vector4d& c,
+                                         const ContactLaw& law, const SolverOptions& options,
+                                         Eigen::Vector4d* lambda, SolverStatistics* statistics,
+                                         double* rim_hint) {
+  // Iterate<kType, true> reads slot 0 of the workspace alone: it only has to exist
+  if (statistics->friction_projected.empty()) {
+    statistics->friction_projected.resize(1);
+    statistics->normal_projected.resize(1);
+  }
+  if (work_.empty()) ResizeWorkspace(1);
+  PrepareContact(0, law, options, c, *lambda,
+                 rim_hint != nullptr ? *rim_hint : std::numeric_limits<double>::quiet_NaN());
+  const ContactWork& w = work_[0];
+  g_hat_[0] = TransformBlock(G, w.scale, w.scale);
+  if (w.dim < 4) {
+    g_hat_[0].bottomRows(4 - w.dim).setZero();
+    g_hat_[0].rightCols(4 - w.dim).setZero();
+  }
+  PrepareSteps(0, g_hat_[0], options);
+  IterateOf<true>(options, statistics);
+  *lambda = w.scale.cwiseProduct(lambda_hat_[0]);
+  statistics->normal_projected[0] = w.normal_projected;
+  statistics->friction_projected[0] = w.friction_projected;
+  if (rim_hint != nullptr) *rim_hint = w.rim_hint;
+}
+
+template <bool kSingle>
+void ContactSolver::IterateOf(const SolverOptions& options, SolverStatistics* statistics) {
+  switch (options.type) {
+    case SolverType::kJacobi:
+      Iterate<SolverType::kJacobi, kSingle>(options, statistics);
+      break;
+    case SolverType::kModifiedJacobi:
+      Iterate<SolverType::kModifiedJacobi, kSingle>(options, statistics);
+      break;
+    case SolverType::kGaussSeidel:
+      Iterate<SolverType::kGaussSeidel, kSingle>(options, statistics);
+      break;
+  }
+}
+
+[[gnu::always_inline]] inline void ContactSolver::ResizeWorkspace(std::size_t m) {
   work_.resize(m);
   g_hat_.resize(m * m);
   c_hat_.resize(m);
@@ -365,39 +393,17 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
   lambda_next_.resize(m);
   change_.resize(m);
   previous_change_.resize(m);
+}
 
+void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOptions& options,
+                            const std::vector<Eigen::Vector4d>& lambda,
+                            const std::vector<double>* rim_hints) {
+  const std::size_t m = problem.laws.size();
+  ResizeWorkspace(m);
   for (std::size_t i = 0; i < m; ++i) {
-    const ContactLaw& law = problem.laws[i];
-    ContactWork& w = work_[i];
-    w.dim = ContactDimension(law);
-    w.mu = law.mu;
-    // with R̄ = 0 every law degenerates to the coulomb disk
-    w.set = w.dim == 4 ? law.friction_set : FrictionSet::kCoulomb;
-    // A_i: (56) for sphere, and for exact and cylinder if options.map_drilling_sets (40)-(47)
-    w.scale = ContactMapDiagonal(law, options);
-    // B_F, C_F and E_F scale linearly along τ: A⁻¹ maps the set with R̄ to the one with R̄/a_τ
-    // (exactly 1 where a_τ = R̄)
-    w.set_rbar = w.scale[3] == law.rbar ? 1.0 : law.rbar / w.scale[3];
-    w.normal_projected = false;
-    w.friction_projected = false;
-    w.friction_natural_step = false;
-    w.rim_hint =
-        rim_hints != nullptr ? (*rim_hints)[i] : std::numeric_limits<double>::quiet_NaN();
-    // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), zero beyond the dimension (scalar loops: dim ≤ 4);
-    // the absolute tolerance in Λ̂ coordinates. Divisions only where a_k ≠ 1 (x/1 = x exactly).
-    c_hat_[i].setZero();
-    lambda_hat_[i].setZero();
-    w.tolerance_abs_hat.setConstant(options.tolerance_abs);
-    for (int k = 0; k < w.dim; ++k) {
-      c_hat_[i][k] = w.scale[k] * problem.c[i][k];
-      lambda_hat_[i][k] = lambda[i][k];
-      if (w.scale[k] != 1.0) {
-        lambda_hat_[i][k] /= w.scale[k];
-        w.tolerance_abs_hat[k] *= 1.0 / w.scale[k];
-      }
-    }
-    change_[i].setZero();
-    previous_change_[i].setZero();
+    PrepareContact(i, problem.laws[i], options, problem.c[i], lambda[i],
+                   rim_hints != nullptr ? (*rim_hints)[i]
+                                        : std::numeric_limits<double>::quiet_NaN());
   }
   for (std::size_t i = 0; i < m; ++i) {
     const ContactWork& wi = work_[i];
@@ -410,38 +416,75 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
       if (wj.dim < 4) g.rightCols(4 - wj.dim).setZero();
     }
   }
+  for (std::size_t i = 0; i < m; ++i) PrepareSteps(i, g_hat_[i * m + i], options);
+}
+
+[[gnu::always_inline]] inline void ContactSolver::PrepareContact(std::size_t i, const ContactLaw& law,
+                                   const SolverOptions& options, const Eigen::Vector4d& c,
+                                   const Eigen::Vector4d& lambda, double rim_hint) {
+  ContactWork& w = work_[i];
+  w.dim = ContactDimension(law);
+  w.mu = law.mu;
+  // with R̄ = 0 every law degenerates to the coulomb disk
+  w.set = w.dim == 4 ? law.friction_set : FrictionSet::kCoulomb;
+  // A_i: (56) for sphere, and for exact and cylinder if options.map_drilling_sets (40)-(47)
+  w.scale = ContactMapDiagonal(law, options);
+  // B_F, C_F and E_F scale linearly along τ: A⁻¹ maps the set with R̄ to the one with R̄/a_τ
+  // (exactly 1 where a_τ = R̄)
+  w.set_rbar = w.scale[3] == law.rbar ? 1.0 : law.rbar / w.scale[3];
+  w.normal_projected = false;
+  w.friction_projected = false;
+  w.friction_natural_step = false;
+  w.rim_hint = rim_hint;
+  // ĉ_i = A_iᵀc_i, Λ̂_i = A_i⁻¹Λ_i (41), zero beyond the dimension (scalar loops: dim ≤ 4);
+  // the absolute tolerance in Λ̂ coordinates. Divisions only where a_k ≠ 1 (x/1 = x exactly).
+  c_hat_[i].setZero();
+  lambda_hat_[i].setZero();
+  w.tolerance_abs_hat.setConstant(options.tolerance_abs);
+  for (int k = 0; k < w.dim; ++k) {
+    c_hat_[i][k] = w.scale[k] * c[k];
+    lambda_hat_[i][k] = lambda[k];
+    if (w.scale[k] != 1.0) {
+      lambda_hat_[i][k] /= w.scale[k];
+      w.tolerance_abs_hat[k] *= 1.0 / w.scale[k];
+    }
+  }
+  change_[i].setZero();
+  previous_change_[i].setZero();
+}
+
+[[gnu::always_inline]] inline void ContactSolver::PrepareSteps(std::size_t i, const Eigen::Matrix4d& g_hat_ii,
+                                 const SolverOptions& options) {
   const double alpha = options.relaxation;
   const double inverse_alpha = 1.0 / alpha;
-  for (std::size_t i = 0; i < m; ++i) {
-    ContactWork& w = work_[i];
-    const Eigen::Vector4d diagonal = g_hat_[i * m + i].diagonal();
-    double max_friction = 0.0;
-    w.step.setZero();
-    // (46), non-projecting: component k steps α / Ĝ_iikk
-    w.step[0] = alpha / diagonal[0];
-    // α / max_{k∈F} Ĝ_iikk, as min_{k∈F} α / Ĝ_iikk (rounded division is monotone: the same)
-    double min_friction_step = std::numeric_limits<double>::infinity();
-    for (int k = 1; k < w.dim; ++k) {
-      max_friction = std::max(max_friction, diagonal[k]);
-      w.step[k] = alpha / diagonal[k];
-      min_friction_step = std::min(min_friction_step, w.step[k]);
-    }
-    // (46) per block: normal {Λ_N ≥ 0} and friction F, each with its own r̂
-    w.r_normal = w.step[0];
-    w.r_friction = w.dim > 1 ? min_friction_step : 0.0;
-    // r̂_i = α / max_k Ĝ_iikk (43)
-    w.r_contact = w.dim > 1 ? std::min(w.r_normal, w.r_friction) : w.r_normal;
-    // stopping rule: σ_k = (α/Ĝ_iikk) / r̂_k for the steps r̂_i (43) and r̂_F (46, Q = I); 1 for
-    // the normal block of (46) (it steps α/Ĝ_iiNN) and where the contact has no component k
-    // (σ_k = max_l Ĝ_iill / Ĝ_iikk: products with 1/α instead of divisions, Solve is per step)
-    w.change_scale_contact.setOnes();
-    w.change_scale_friction.setOnes();
-    const double contact_factor = std::max(diagonal[0], max_friction) * inverse_alpha;
-    const double friction_factor = max_friction * inverse_alpha;
-    for (int k = 0; k < w.dim; ++k) {
-      w.change_scale_contact[k] = w.step[k] * contact_factor;
-      if (k > 0) w.change_scale_friction[k] = w.step[k] * friction_factor;
-    }
+  ContactWork& w = work_[i];
+  const Eigen::Vector4d diagonal = g_hat_ii.diagonal();
+  double max_friction = 0.0;
+  w.step.setZero();
+  // (46), non-projecting: component k steps α / Ĝ_iikk
+  w.step[0] = alpha / diagonal[0];
+  // α / max_{k∈F} Ĝ_iikk, as min_{k∈F} α / Ĝ_iikk (rounded division is monotone: the same)
+  double min_friction_step = std::numeric_limits<double>::infinity();
+  for (int k = 1; k < w.dim; ++k) {
+    max_friction = std::max(max_friction, diagonal[k]);
+    w.step[k] = alpha / diagonal[k];
+    min_friction_step = std::min(min_friction_step, w.step[k]);
+  }
+  // (46) per block: normal {Λ_N ≥ 0} and friction F, each with its own r̂
+  w.r_normal = w.step[0];
+  w.r_friction = w.dim > 1 ? min_friction_step : 0.0;
+  // r̂_i = α / max_k Ĝ_iikk (43)
+  w.r_contact = w.dim > 1 ? std::min(w.r_normal, w.r_friction) : w.r_normal;
+  // stopping rule: σ_k = (α/Ĝ_iikk) / r̂_k for the steps r̂_i (43) and r̂_F (46, Q = I); 1 for
+  // the normal block of (46) (it steps α/Ĝ_iiNN) and where the contact has no component k
+  // (σ_k = max_l Ĝ_iill / Ĝ_iikk: products with 1/α instead of divisions, Solve is per step)
+  w.change_scale_contact.setOnes();
+  w.change_scale_friction.setOnes();
+  const double contact_factor = std::max(diagonal[0], max_friction) * inverse_alpha;
+  const double friction_factor = max_friction * inverse_alpha;
+  for (int k = 0; k < w.dim; ++k) {
+    w.change_scale_contact[k] = w.step[k] * contact_factor;
+    if (k > 0) w.change_scale_friction[k] = w.step[k] * friction_factor;
   }
 }
 

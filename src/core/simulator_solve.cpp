@@ -24,6 +24,52 @@ Eigen::Vector4d QuadraticStart(const Memory& m) {
 
 }  // namespace
 
+[[gnu::always_inline]] inline Eigen::Vector4d Simulator::WarmStart(const ContactMemory& memory, bool extrapolating) const {
+  // the previous step's percussion (zero if the contact was open then; the memory is zero beyond
+  // the contact's dimension), or extrapolated from the last two or three
+  if (memory.closed_step != step_count_ - 1) return Eigen::Vector4d::Zero();
+  if (extrapolating && memory.converged && memory.closed_before == step_count_ - 2) {
+    return memory.quadratic_served ? QuadraticStart(memory) : LinearStart(memory);
+  }
+  return memory.percussion;
+}
+
+[[gnu::always_inline]] inline Eigen::Matrix4d Simulator::DelassusBlock(const ClosedContact& a, const ClosedContact& b) const {
+  // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on
+  Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+  for (const ContactSide& s : a.jacobian.side) {
+    if (s.body < 0) continue;
+    for (const ContactSide& t : b.jacobian.side) {
+      if (t.body != s.body) continue;
+      block += SideDelassusBlock(inertia_[static_cast<std::size_t>(s.body)], a.jacobian, s,
+                                 b.jacobian, t);
+    }
+  }
+  return block;
+}
+
+[[gnu::always_inline]] inline Eigen::Vector4d Simulator::FreeContactVelocity(const ClosedContact& c) const {
+  // (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B
+  Eigen::Vector4d gamma_free = Eigen::Vector4d::Zero();
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
+    gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
+  }
+  return gamma_free + c.report.law.restitution * c.gamma_begin;
+}
+
+[[gnu::always_inline]] inline void Simulator::AddContactImpulse(const ClosedContact& c, const Eigen::Vector4d& percussion) {
+  // W Λ on a side: sign (LᵀΛ, JᵀΛ); Λ is zero beyond the contact's dimension
+  const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
+    w.linear_contact += side.sign * linear;
+    w.angular_contact += side.sign * (side.angular.transpose() * percussion);
+  }
+}
+
 void Simulator::ApplyImpulses(const Island& island) {
   // (18) the contact part M⁻¹ Σ W_i Λ_i, per body
   const std::size_t index = static_cast<std::size_t>(&island - islands_.data());
@@ -33,22 +79,88 @@ void Simulator::ApplyImpulses(const Island& island) {
     w.angular_contact.setZero();
   }
   for (int k = 0; k < island.contact_count; ++k) {
-    const ClosedContact& c = closed_[static_cast<std::size_t>(
-        island_contacts_[static_cast<std::size_t>(island.first_contact + k)])];
-    // Λ_k is zero beyond the contact's dimension
-    const Eigen::Vector4d& percussion = lambda_[static_cast<std::size_t>(k)];
-    // W Λ on a side: sign (LᵀΛ, JᵀΛ)
-    const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
-    for (const ContactSide& side : c.jacobian.side) {
-      if (side.body < 0) continue;
-      BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
-      w.linear_contact += side.sign * linear;
-      w.angular_contact += side.sign * (side.angular.transpose() * percussion);
-    }
+    AddContactImpulse(closed_[static_cast<std::size_t>(island_contacts_[static_cast<std::size_t>(
+                          island.first_contact + k)])],
+                      lambda_[static_cast<std::size_t>(k)]);
   }
 }
 
+[[gnu::always_inline]] inline void Simulator::RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
+                              bool friction_projected, bool alone, double rim_hint) {
+  ClosedContact& c = *contact;
+  c.report.percussion = percussion;
+  ContactMemory& memory = *c.memory;
+  memory.sliding = friction_projected && c.report.dimension > 1;
+  memory.converged = island_stats_.converged;
+  memory.tangent1 = c.report.frame.tangent1;
+  // the next start is quadratic if that would have been the closer start of this solve, in a
+  // smooth stretch of a contact alone in its island: closed in the last three steps, this
+  // solve converged within two iterations (not an impact, a stick-slip switch or a slow
+  // drilling mode, where the quadratic's larger weights on the solver's round-off make the
+  // start worse); alone, as its percussion is then unique (several contacts can share a load
+  // in many ways, and the shares wander: the two rolling feet of warm_start_test took twice
+  // the iterations)
+  memory.quadratic_served = false;
+  if (alone && island_stats_.converged && island_stats_.iterations <= 2 &&
+      memory.closed_step == step_count_ - 1 && memory.closed_before == step_count_ - 2 &&
+      memory.closed_before2 == step_count_ - 3) {
+    memory.quadratic_served = (QuadraticStart(memory) - percussion).cwiseAbs().maxCoeff() <
+                              (LinearStart(memory) - percussion).cwiseAbs().maxCoeff();
+  }
+  memory.percussion_before2 = memory.percussion_before;
+  memory.percussion_before = memory.percussion;
+  memory.percussion = percussion;
+  if (c.report.law.friction_set == FrictionSet::kExact) memory.rim_hint = rim_hint;
+  memory.closed_before2 = memory.closed_before;
+  memory.closed_before = memory.closed_step;
+  memory.closed_step = step_count_;
+}
+
+bool Simulator::SolveLoneContact(const Island& island, StepStatistics* stats) {
+  const std::size_t i =
+      static_cast<std::size_t>(island_contacts_[static_cast<std::size_t>(island.first_contact)]);
+  ClosedContact& c = closed_[i];
+  const ContactMemory& memory = *c.memory;
+  Eigen::Vector4d lambda = WarmStart(memory, options_.extrapolate_warm_start);
+  const bool exact = c.report.law.friction_set == FrictionSet::kExact;
+  double rim_hint = memory.closed_step == step_count_ - 1
+                        ? memory.rim_hint
+                        : std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Matrix4d G = DelassusBlock(c, c);
+  // a body far away can overflow G, a diverged state (huge ω) c: not solved
+  if (!G.allFinite()) return false;
+  const Eigen::Vector4d free_velocity = FreeContactVelocity(c);
+  if (!free_velocity.allFinite()) return false;
+  solver_.SolveOnePrevalidated(G, free_velocity, c.report.law, options_.solver, &lambda,
+                               &island_stats_, exact ? &rim_hint : nullptr);
+  // (18) on its one or two bodies
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
+    w.linear_contact.setZero();
+    w.angular_contact.setZero();
+  }
+  AddContactImpulse(c, lambda);
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    const std::size_t b = static_cast<std::size_t>(side.body);
+    BodyStep& w = body_step_[b];
+    w.angular_end = w.angular_free + inertia_[b].inverse_inertia * w.angular_contact;
+  }
+  stats->solver.iterations += island_stats_.iterations;
+  stats->solver.residual = std::max(stats->solver.residual, island_stats_.residual);
+  stats->solver.max_change = std::max(stats->solver.max_change, island_stats_.max_change);
+  stats->solver.converged = stats->solver.converged && island_stats_.converged;
+  stats->gyroscopic_passes = std::max(stats->gyroscopic_passes, 1);
+  stats->solver.friction_projected[i] = island_stats_.friction_projected[0];
+  stats->solver.normal_projected[i] = island_stats_.normal_projected[0];
+  RememberSolve(&c, lambda, island_stats_.friction_projected[0], /*alone=*/true, rim_hint);
+  return true;
+}
+
 bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
+  // one contact (a top on the ground) on an explicit step: without the block problem
+  if (island.contact_count == 1 && !implicit_step_) return SolveLoneContact(island, stats);
   const double dt = options_.time_step;
   const std::size_t index = static_cast<std::size_t>(&island - islands_.data());
   const int body_begin = island_body_start_[index];
@@ -76,37 +188,18 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     const ClosedContact& c = contact(k);
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
     any_exact = any_exact || c.report.law.friction_set == FrictionSet::kExact;
-    // warm start from the previous step's percussions (zero if the contact was open then; the
-    // memory is zero beyond the contact's dimension), or extrapolated from the last two
-    const ContactMemory& memory = *c.memory;
-    const bool warm = memory.closed_step == step_count_ - 1;
-    Eigen::Vector4d& start = lambda_[static_cast<std::size_t>(k)];
-    if (!warm) {
-      start.setZero();
-    } else if (extrapolating && memory.converged && memory.closed_before == step_count_ - 2) {
-      start = memory.quadratic_served ? QuadraticStart(memory) : LinearStart(memory);
-    } else {
-      start = memory.percussion;
-    }
-    rim_hints_[static_cast<std::size_t>(k)] =
-        warm ? c.memory->rim_hint : std::numeric_limits<double>::quiet_NaN();
+    lambda_[static_cast<std::size_t>(k)] = WarmStart(*c.memory, extrapolating);
+    rim_hints_[static_cast<std::size_t>(k)] = c.memory->closed_step == step_count_ - 1
+                                                  ? c.memory->rim_hint
+                                                  : std::numeric_limits<double>::quiet_NaN();
   }
 
-  // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on, in padded blocks
+  // (16) the blocks G_ij, padded
   for (int i = 0; i < m; ++i) {
     const ClosedContact& a = contact(i);
     for (int j = i; j < m; ++j) {
-      const ClosedContact& b = contact(j);
       Eigen::Matrix4d& block = problem_.G[static_cast<std::size_t>(i * m + j)];
-      block.setZero();
-      for (const ContactSide& s : a.jacobian.side) {
-        if (s.body < 0) continue;
-        for (const ContactSide& t : b.jacobian.side) {
-          if (t.body != s.body) continue;
-          block += SideDelassusBlock(inertia_[static_cast<std::size_t>(s.body)], a.jacobian, s,
-                                     b.jacobian, t);
-        }
-      }
+      block = DelassusBlock(a, contact(j));
       if (j != i) problem_.G[static_cast<std::size_t>(j * m + i)] = block.transpose();
       // a body far away can overflow G: not solved
       if (!block.allFinite()) return false;
@@ -118,18 +211,11 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
   int total_iterations = 0;
   int passes = 0;
   for (int pass = 0; pass < kMaxGyroscopicPasses; ++pass) {
-    // (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B
+    // (16) c_i, with this pass's gyroscopic impulse
     bool finite = true;
     for (int k = 0; k < m; ++k) {
-      const ClosedContact& c = contact(k);
-      Eigen::Vector4d gamma_free = Eigen::Vector4d::Zero();
-      for (const ContactSide& side : c.jacobian.side) {
-        if (side.body < 0) continue;
-        const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
-        gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
-      }
       Eigen::Vector4d& ci = problem_.c[static_cast<std::size_t>(k)];
-      ci = gamma_free + c.report.law.restitution * c.gamma_begin;
+      ci = FreeContactVelocity(contact(k));
       finite = finite && ci.allFinite();
     }
     // a diverged state (huge ω) can overflow c: not solved
@@ -189,34 +275,9 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     stats->solver.friction_projected[i] =
         island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
-    c.report.percussion = lambda_[static_cast<std::size_t>(k)];
-    ContactMemory& memory = *c.memory;
-    memory.sliding = island_stats_.friction_projected[static_cast<std::size_t>(k)] &&
-                     c.report.dimension > 1;
-    memory.converged = island_stats_.converged;
-    memory.tangent1 = c.report.frame.tangent1;
-    // the next start is quadratic if that would have been the closer start of this solve, in a
-    // smooth stretch of a contact alone in its island: closed in the last three steps, this
-    // solve converged within two iterations (not an impact, a stick-slip switch or a slow
-    // drilling mode, where the quadratic's larger weights on the solver's round-off make the
-    // start worse); alone, as its percussion is then unique (several contacts can share a load
-    // in many ways, and the shares wander: the two rolling feet of warm_start_test took twice
-    // the iterations)
-    memory.quadratic_served = false;
-    if (m == 1 && island_stats_.converged && island_stats_.iterations <= 2 &&
-        memory.closed_step == step_count_ - 1 && memory.closed_before == step_count_ - 2 &&
-        memory.closed_before2 == step_count_ - 3) {
-      const Eigen::Vector4d& result = c.report.percussion;
-      memory.quadratic_served = (QuadraticStart(memory) - result).cwiseAbs().maxCoeff() <
-                                (LinearStart(memory) - result).cwiseAbs().maxCoeff();
-    }
-    memory.percussion_before2 = memory.percussion_before;
-    memory.percussion_before = memory.percussion;
-    memory.percussion = c.report.percussion;
-    if (any_exact) memory.rim_hint = rim_hints_[static_cast<std::size_t>(k)];
-    memory.closed_before2 = memory.closed_before;
-    memory.closed_before = memory.closed_step;
-    memory.closed_step = step_count_;
+    RememberSolve(&c, lambda_[static_cast<std::size_t>(k)],
+                  island_stats_.friction_projected[static_cast<std::size_t>(k)], m == 1,
+                  rim_hints_[static_cast<std::size_t>(k)]);
   }
   return true;
 }

@@ -818,6 +818,61 @@ TEST(BlockProblems, PaddingIsIgnoredAndTheDenseSolutionIsReproduced) {
   EXPECT_GT(padded, 20);  // the laws drawn include 1- and 3-component contacts
 }
 
+// One contact (the Simulator's lone-contact islands): SolveOnePrevalidated gives the block
+// solve's percussion, iterations, residual and flags bit for bit, for every set and solver, also
+// from a solver whose workspace a larger problem sized before (it reads slot 0 alone) and with
+// the exact prox's hint carried in and out.
+TEST(BlockProblems, OneContactSolveReproducesTheBlockSolve) {
+  std::mt19937_64 rng(kSeed + 12);
+  int sliding = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const ContactProblem dense = RandomProblem(RandomLaws(1, rng), rng);
+    const ContactLaw& law = dense.contacts[0].law;
+    const int dim = ContactDimension(law);
+    BlockContactProblem blocks;
+    blocks.Resize(1);
+    blocks.laws[0] = law;
+    blocks.G[0].setZero();
+    blocks.c[0].setZero();
+    blocks.G[0].topLeftCorner(dim, dim) = dense.G;
+    blocks.c[0].head(dim) = dense.c;
+    for (SolverType type : kAllSolverTypes) {
+      const SolverOptions options = Convergent(type, dense);
+      ContactSolver block_solver;
+      std::vector<Eigen::Vector4d> expected(1, Eigen::Vector4d::Zero());
+      std::vector<double> expected_hint(1, std::numeric_limits<double>::quiet_NaN());
+      SolverStatistics expected_stats;
+      block_solver.SolvePrevalidated(blocks, options, &expected, &expected_stats, &expected_hint);
+
+      ContactSolver one_solver;
+      if (trial % 2 == 1) {  // a workspace left by a problem of three contacts
+        const ContactProblem larger = RandomProblem(RandomLaws(3, rng), rng);
+        Eigen::VectorXd lambda = Eigen::VectorXd::Zero(larger.c.size());
+        one_solver.Solve(larger, Convergent(type, larger), &lambda);
+      }
+      Eigen::Vector4d lambda = Eigen::Vector4d::Zero();
+      double hint = std::numeric_limits<double>::quiet_NaN();
+      SolverStatistics stats;
+      one_solver.SolveOnePrevalidated(blocks.G[0], blocks.c[0], law, options, &lambda, &stats,
+                                      &hint);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(lambda[k], expected[0][k]) << trial << " k " << k;
+      EXPECT_EQ(stats.iterations, expected_stats.iterations) << trial;
+      EXPECT_EQ(stats.converged, expected_stats.converged) << trial;
+      EXPECT_EQ(stats.residual, expected_stats.residual) << trial;
+      EXPECT_EQ(stats.max_change, expected_stats.max_change) << trial;
+      EXPECT_EQ(stats.friction_projected[0], expected_stats.friction_projected[0]) << trial;
+      EXPECT_EQ(stats.normal_projected[0], expected_stats.normal_projected[0]) << trial;
+      if (std::isnan(expected_hint[0])) {
+        EXPECT_TRUE(std::isnan(hint)) << trial;
+      } else {
+        EXPECT_EQ(hint, expected_hint[0]) << trial;
+      }
+      sliding += expected_stats.friction_projected[0] ? 1 : 0;
+    }
+  }
+  EXPECT_GT(sliding, 10);  // the boundary of the friction sets is reached, not only the interior
+}
+
 // ============================== the paper's central claim ==============================
 
 TEST(CentralClaim, EllipsoidDirectlyAndSphereThroughTheTransformationAgree) {

@@ -296,6 +296,14 @@ class ContactSolver {
   void SolvePrevalidated(const BlockContactProblem& problem, const SolverOptions& options,
                          std::vector<Eigen::Vector4d>* lambda, SolverStatistics* statistics,
                          std::vector<double>* rim_hints = nullptr);
+  /// The same for a problem of one contact (m = 1: G its 4 × 4 block, c, its law), without
+  /// the block problem's vectors: the same iteration, the same result to the last bit. Its
+  /// projection flags are statistics->normal_projected[0] and friction_projected[0] (sized to
+  /// 1 if empty, left longer if they are).
+  void SolveOnePrevalidated(const Eigen::Matrix4d& G, const Eigen::Vector4d& c,
+                            const ContactLaw& law, const SolverOptions& options,
+                            Eigen::Vector4d* lambda, SolverStatistics* statistics,
+                            double* rim_hint = nullptr);
 
  private:
   // kSingle: the problem has one contact (m = 1 known at compile time: no loops over j)
@@ -303,6 +311,15 @@ class ContactSolver {
   void Iterate(const SolverOptions& options, SolverStatistics* statistics);
   void Prepare(const BlockContactProblem& problem, const SolverOptions& options,
                const std::vector<Eigen::Vector4d>& lambda, const std::vector<double>* rim_hints);
+  // Prepare's parts for contact i: its law's data, ĉ_i and Λ̂_i; and, once Ĝ_ii is known, its
+  // steps and stopping-rule scales
+  void PrepareContact(std::size_t i, const ContactLaw& law, const SolverOptions& options,
+                      const Eigen::Vector4d& c, const Eigen::Vector4d& lambda, double rim_hint);
+  void PrepareSteps(std::size_t i, const Eigen::Matrix4d& g_hat_ii, const SolverOptions& options);
+  // Iterate for `options.type`; m = 1 with kSingle
+  template <bool kSingle>
+  void IterateOf(const SolverOptions& options, SolverStatistics* statistics);
+  void ResizeWorkspace(std::size_t m);
 
   // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
   // iterates Λ̂_i^ν and Λ̂_i^{ν+1}, and the last two changes |Λ̂_i^{ν+1} - Λ̂_i^ν| per contact

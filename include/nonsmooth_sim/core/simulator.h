@@ -418,6 +418,18 @@ class Simulator {
                      StepStatistics* stats);
   // (18): the contact impulses M⁻¹ Σ W_iΛ_i of the island's contacts from lambda_
   void ApplyImpulses(const Island& island);
+  // an island of one contact on an explicit step: SolveIsland's result without the block
+  // problem (ContactSolver::SolveOnePrevalidated)
+  bool SolveLoneContact(const Island& island, StepStatistics* stats);
+  // SolveIsland's parts for one contact: its warm start (above), the block G_ij of (16) with a
+  // contact of its island, its c_i (16), its impulse W_iΛ_i added to its bodies' sums, and what
+  // the solve leaves in its report and memory (`alone`: the only contact of its island)
+  Eigen::Vector4d WarmStart(const ContactMemory& memory, bool extrapolating) const;
+  Eigen::Matrix4d DelassusBlock(const ClosedContact& a, const ClosedContact& b) const;
+  Eigen::Vector4d FreeContactVelocity(const ClosedContact& c) const;
+  void AddContactImpulse(const ClosedContact& c, const Eigen::Vector4d& percussion);
+  void RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
+                     bool friction_projected, bool alone, double rim_hint);
   // the law of a pair with the overrides of SetFrictionSet
   ContactLaw PairLaw(int first, int second) const;
   // collider_pose_ of a collider on a body at q_M (end = false) or q_E (end = true).
