@@ -385,7 +385,8 @@ void ContactSolver::IterateOf(const SolverOptions& options, SolverStatistics* st
   }
 }
 
-[[gnu::always_inline]] inline void ContactSolver::ResizeWorkspace(std::size_t m) {
+[[gnu::always_inline]] inline
+void ContactSolver::ResizeWorkspace(std::size_t m) {
   work_.resize(m);
   g_hat_.resize(m * m);
   c_hat_.resize(m);
@@ -419,9 +420,10 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
   for (std::size_t i = 0; i < m; ++i) PrepareSteps(i, g_hat_[i * m + i], options);
 }
 
-[[gnu::always_inline]] inline void ContactSolver::PrepareContact(std::size_t i, const ContactLaw& law,
-                                   const SolverOptions& options, const Eigen::Vector4d& c,
-                                   const Eigen::Vector4d& lambda, double rim_hint) {
+[[gnu::always_inline]] inline
+void ContactSolver::PrepareContact(std::size_t i, const ContactLaw& law,
+                                  const SolverOptions& options, const Eigen::Vector4d& c,
+                                  const Eigen::Vector4d& lambda, double rim_hint) {
   ContactWork& w = work_[i];
   w.dim = ContactDimension(law);
   w.mu = law.mu;
@@ -453,7 +455,8 @@ void ContactSolver::Prepare(const BlockContactProblem& problem, const SolverOpti
   previous_change_[i].setZero();
 }
 
-[[gnu::always_inline]] inline void ContactSolver::PrepareSteps(std::size_t i, const Eigen::Matrix4d& g_hat_ii,
+[[gnu::always_inline]] inline
+void ContactSolver::PrepareSteps(std::size_t i, const Eigen::Matrix4d& g_hat_ii,
                                  const SolverOptions& options) {
   const double alpha = options.relaxation;
   const double inverse_alpha = 1.0 / alpha;

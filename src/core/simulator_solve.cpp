@@ -24,7 +24,8 @@ Eigen::Vector4d QuadraticStart(const Memory& m) {
 
 }  // namespace
 
-[[gnu::always_inline]] inline Eigen::Vector4d Simulator::WarmStart(const ContactMemory& memory, bool extrapolating) const {
+[[gnu::always_inline]] inline
+Eigen::Vector4d Simulator::WarmStart(const ContactMemory& memory, bool extrapolating) const {
   // the previous step's percussion (zero if the contact was open then; the memory is zero beyond
   // the contact's dimension), or extrapolated from the last two or three
   if (memory.closed_step != step_count_ - 1) return Eigen::Vector4d::Zero();
@@ -34,7 +35,8 @@ Eigen::Vector4d QuadraticStart(const Memory& m) {
   return memory.percussion;
 }
 
-[[gnu::always_inline]] inline Eigen::Matrix4d Simulator::DelassusBlock(const ClosedContact& a, const ClosedContact& b) const {
+[[gnu::always_inline]] inline
+Eigen::Matrix4d Simulator::DelassusBlock(const ClosedContact& a, const ClosedContact& b) const {
   // (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on
   Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
   for (const ContactSide& s : a.jacobian.side) {
@@ -48,7 +50,8 @@ Eigen::Vector4d QuadraticStart(const Memory& m) {
   return block;
 }
 
-[[gnu::always_inline]] inline Eigen::Vector4d Simulator::FreeContactVelocity(const ClosedContact& c) const {
+[[gnu::always_inline]] inline
+Eigen::Vector4d Simulator::FreeContactVelocity(const ClosedContact& c) const {
   // (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B
   Eigen::Vector4d gamma_free = Eigen::Vector4d::Zero();
   for (const ContactSide& side : c.jacobian.side) {
@@ -59,7 +62,8 @@ Eigen::Vector4d QuadraticStart(const Memory& m) {
   return gamma_free + c.report.law.restitution * c.gamma_begin;
 }
 
-[[gnu::always_inline]] inline void Simulator::AddContactImpulse(const ClosedContact& c, const Eigen::Vector4d& percussion) {
+[[gnu::always_inline]] inline
+void Simulator::AddContactImpulse(const ClosedContact& c, const Eigen::Vector4d& percussion) {
   // W Λ on a side: sign (LᵀΛ, JᵀΛ); Λ is zero beyond the contact's dimension
   const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
   for (const ContactSide& side : c.jacobian.side) {
@@ -85,7 +89,8 @@ void Simulator::ApplyImpulses(const Island& island) {
   }
 }
 
-[[gnu::always_inline]] inline void Simulator::RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
+[[gnu::always_inline]] inline
+void Simulator::RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
                               bool friction_projected, bool alone, double rim_hint) {
   ClosedContact& c = *contact;
   c.report.percussion = percussion;

@@ -29,15 +29,16 @@
 //    2Λ^{n-1} - Λ^{n-2}, for a contact closed in the last two steps whose last solve converged
 //    (an unconverged iterate's error would be extrapolated too), in an island of one contact or
 //    of contacts that all slid in the last step; quadratically, 3(Λ^{n-1} - Λ^{n-2}) + Λ^{n-3},
-//    where that would have been the closer start of the last solve, which converged within two
-//    iterations (a smooth stretch: the Tippe-Top's 8 s take 1.41 iterations per step instead of
-//    2.05, with every event in the same step; without the two-iteration condition the
-//    rattleback's reversal, where a slow drilling mode sets in, had 57 unconverged steps). Several contacts that stick can share their
-//    load in many ways (a face on its points, a squeeze between two feet that roll); a start
-//    extrapolated along that freedom is a solution as well, and the shares would drift step by
-//    step. The start only chooses where the iteration begins: the result differs within the
-//    solver's tolerance. (Falling back to Λ^{n-1} after steps where the extrapolation served
-//    worse, an impact, a stick-slip switch, changed nothing measurable on the eight scenes.)
+//    for a contact alone in its island where that would have been the closer start of the last
+//    solve, which converged within two iterations (a smooth stretch: the Tippe-Top's 8 s take
+//    1.41 iterations per step instead of 2.05, with every event in the same step; without the
+//    two-iteration condition the rattleback's reversal, where a slow drilling mode sets in, had
+//    57 unconverged steps). Several contacts that stick can share their load in many ways (a
+//    face on its points, a squeeze between two feet that roll); a start extrapolated along that
+//    freedom is a solution as well, and the shares would drift step by step. The start only
+//    chooses where the iteration begins: the result differs within the solver's tolerance.
+//    (Falling back to Λ^{n-1} after steps where the extrapolation served worse, an impact, a
+//    stick-slip switch, changed nothing measurable on the eight scenes.)
 //  - GyroscopicScheme::kImplicitMidpoint replaces the gyroscopic part of h(q_M, u_B) by the
 //    implicit midpoint rule Θ(ω_E - ω_B) = -Δt ω_M × Θω_M + Σ J_iᵀΛ_i, ω_M = (ω_B + ω_E)/2
 //    (solved by Newton for fixed Λ), with a few fixed-point passes around the contact solve: the
