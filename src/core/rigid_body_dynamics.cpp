@@ -2,6 +2,7 @@
 // rigid_body_dynamics.h.
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
@@ -32,6 +33,10 @@ BodyInertia MakeBodyInertia(double mass, const Eigen::Matrix3d& inertia) {
   body.inertia = 0.5 * (inertia + inertia.transpose());
   body.inverse_inertia = body.inertia.inverse();
   body.inverse_inertia = 0.5 * (body.inverse_inertia + body.inverse_inertia.transpose()).eval();
+  body.inverse_inertia_factor = body.inverse_inertia.llt().matrixL();
+  // a diagonal Θ_S (principal axes, the usual URDF inertia) has the diagonal factor
+  // R = diag(Θ_S⁻¹)^½, which J R needs only as a column scaling
+  body.principal = body.inertia.isDiagonal(0.0);
   return body;
 }
 

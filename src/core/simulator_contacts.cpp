@@ -146,7 +146,8 @@ void Simulator::AddPairContacts(int first, int second) {
       side.sign = s == 0 ? 1.0 : -1.0;
       if (side.body < 0) continue;
       const BodyStep& w = body_step_[static_cast<std::size_t>(side.body)];
-      side.angular = ContactAngularRows(r.frame, *points[s], w.position_mid, w.rotation_mid);
+      SetAngularRows(ContactAngularRows(r.frame, *points[s], w.position_mid, w.rotation_mid),
+                     inertia_[static_cast<std::size_t>(side.body)], &side);
       if (r.law.restitution == 0.0) continue;  // γ^B enters c only through ε (16)
       const BodyState& state = state_[static_cast<std::size_t>(side.body)];
       // γ^B = W(q_M)ᵀu_B

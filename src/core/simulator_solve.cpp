@@ -41,10 +41,11 @@ Eigen::Matrix4d Simulator::DelassusBlock(const ClosedContact& a, const ClosedCon
   Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
   for (const ContactSide& s : a.jacobian.side) {
     if (s.body < 0) continue;
+    const BodyInertia& body = inertia_[static_cast<std::size_t>(s.body)];
     for (const ContactSide& t : b.jacobian.side) {
       if (t.body != s.body) continue;
-      block += SideDelassusBlock(inertia_[static_cast<std::size_t>(s.body)], a.jacobian, s,
-                                 b.jacobian, t);
+      block += &s == &t ? OwnDelassusBlock(body, s)
+                        : SideDelassusBlock(body, a.jacobian, s, b.jacobian, t);
     }
   }
   return block;

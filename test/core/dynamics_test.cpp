@@ -442,7 +442,8 @@ struct TwoSidedContact {
   ContactJacobian jacobian;
 };
 
-TwoSidedContact MakeContact(const std::vector<BodyMotion>& bodies, int body_a, int body_b,
+TwoSidedContact MakeContact(const std::vector<BodyMotion>& bodies,
+                            const std::vector<BodyInertia>& inertia, int body_a, int body_b,
                             RandomMotion* random) {
   TwoSidedContact c;
   c.body_a = body_a;
@@ -460,7 +461,8 @@ TwoSidedContact MakeContact(const std::vector<BodyMotion>& bodies, int body_a, i
     side.sign = s == 0 ? 1.0 : -1.0;
     if (side.body < 0) continue;
     const BodyMotion& m = bodies[static_cast<std::size_t>(side.body)];
-    side.angular = ContactAngularRows(c.frame, *points[s], m.position, m.rotation);
+    SetAngularRows(ContactAngularRows(c.frame, *points[s], m.position, m.rotation),
+                   inertia[static_cast<std::size_t>(side.body)], &side);
   }
   return c;
 }
@@ -524,7 +526,8 @@ Eigen::MatrixXd InverseMassMatrix(const std::vector<BodyInertia>& inertia) {
   return m_inverse;
 }
 
-// G_ij by contact_jacobian.h: Σ over the sides of i and j on one body of SideDelassusBlock.
+// G_ij by contact_jacobian.h: Σ over the sides of i and j on one body of SideDelassusBlock, or
+// OwnDelassusBlock for a side with itself (as the simulator forms G_ii).
 Eigen::Matrix4d DelassusBlock(const std::vector<BodyInertia>& inertia, const TwoSidedContact& i,
                               const TwoSidedContact& j) {
   Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
@@ -532,8 +535,9 @@ Eigen::Matrix4d DelassusBlock(const std::vector<BodyInertia>& inertia, const Two
     if (s.body < 0) continue;
     for (const ContactSide& t : j.jacobian.side) {
       if (t.body != s.body) continue;
-      block += SideDelassusBlock(inertia[static_cast<std::size_t>(s.body)], i.jacobian, s,
-                                 j.jacobian, t);
+      const BodyInertia& body = inertia[static_cast<std::size_t>(s.body)];
+      block += &s == &t ? OwnDelassusBlock(body, s)
+                        : SideDelassusBlock(body, i.jacobian, s, j.jacobian, t);
     }
   }
   return block;
@@ -596,7 +600,8 @@ TEST(ContactKinematics, SphereOnGroundMatchesTheWorldFrameVelocityOfTheContactPo
     c.jacobian.linear = ContactLinearRows(c.frame);
     c.jacobian.side[0].body = 0;
     c.jacobian.side[0].sign = 1.0;
-    c.jacobian.side[0].angular = ContactAngularRows(c.frame, c.point_b, m.position, m.rotation);
+    SetAngularRows(ContactAngularRows(c.frame, c.point_b, m.position, m.rotation), body,
+                   &c.jacobian.side[0]);
     c.jacobian.side[1].body = kWorld;
 
     const Eigen::Vector4d gamma =
@@ -614,6 +619,8 @@ TEST(ContactKinematics, SphereOnGroundMatchesTheWorldFrameVelocityOfTheContactPo
     const Eigen::Matrix4d block =
         SideDelassusBlock(body, c.jacobian, c.jacobian.side[0], c.jacobian, c.jacobian.side[0]);
     EXPECT_LT((block - g).norm(), 1e-9 * g.norm());
+    const Eigen::Matrix4d own = OwnDelassusBlock(body, c.jacobian.side[0]);
+    EXPECT_LT((own - g).norm(), 1e-9 * g.norm());
     // and W Λ = (LᵀΛ, JᵀΛ), the impulse the simulator applies
     const Eigen::Vector4d lambda(0.3, -0.1, 0.2, 0.05);
     EXPECT_LT((GeneralizedImpulse(c, 1, lambda) - w * lambda).norm(), 1e-12);
@@ -636,9 +643,9 @@ TEST(ContactKinematics, ContactsOverTwoBodiesMatchTheWorldFrameRelativeVelocity)
   const Eigen::MatrixXd m_inverse = InverseMassMatrix(inertia);
   for (int trial = 0; trial < 100; ++trial) {
     const std::vector<BodyMotion> bodies = {RandomBodyMotion(&random), RandomBodyMotion(&random)};
-    const TwoSidedContact contacts[3] = {MakeContact(bodies, 0, 1, &random),
-                                         MakeContact(bodies, 1, 0, &random),
-                                         MakeContact(bodies, kWorld, 1, &random)};
+    const TwoSidedContact contacts[3] = {MakeContact(bodies, inertia, 0, 1, &random),
+                                         MakeContact(bodies, inertia, 1, 0, &random),
+                                         MakeContact(bodies, inertia, kWorld, 1, &random)};
     Eigen::MatrixXd w[3];
     for (int i = 0; i < 3; ++i) {
       const TwoSidedContact& c = contacts[i];

@@ -30,6 +30,9 @@ struct BodyInertia {
   double inverse_mass = 1.0;  ///< 1/m [1/kg]
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();          ///< Θ_S in K [kg m²]
   Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Identity();  ///< Θ_S⁻¹ [1/(kg m²)]
+  /// R with Θ_S⁻¹ = R Rᵀ, lower triangular (Cholesky): J Θ⁻¹ Jᵀ = (J R)(J R)ᵀ
+  Eigen::Matrix3d inverse_inertia_factor = Eigen::Matrix3d::Identity();
+  bool principal = true;  ///< Θ_S diagonal in K (then so is R)
 };
 /// Requires mass > 0 and inertia symmetric positive definite (see ValidateScene).
 BodyInertia MakeBodyInertia(double mass, const Eigen::Matrix3d& inertia);

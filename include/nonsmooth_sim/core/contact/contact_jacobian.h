@@ -38,6 +38,8 @@ struct ContactSide {
   int body = -1;      ///< body index; -1 = no side (static collider)
   double sign = 1.0;  ///< +1 on B, -1 on A
   Eigen::Matrix<double, 4, 3> angular = Eigen::Matrix<double, 4, 3>::Zero();  ///< J, in K
+  /// J R with Θ⁻¹ = R Rᵀ of the body (BodyInertia): J Θ⁻¹ Jᵀ of G as a product of two (SetAngular)
+  Eigen::Matrix<double, 4, 3> angular_metric = Eigen::Matrix<double, 4, 3>::Zero();
 };
 
 struct ContactJacobian {
@@ -61,6 +63,17 @@ inline Eigen::Matrix<double, 4, 3> ContactAngularRows(const ContactFrame& frame,
   return angular;
 }
 
+/// Sets J of a side and J R with it (the side's body's inertia).
+inline void SetAngularRows(const Eigen::Matrix<double, 4, 3>& angular, const BodyInertia& body,
+                           ContactSide* side) {
+  side->angular = angular;
+  if (body.principal) {
+    side->angular_metric.noalias() = angular * body.inverse_inertia_factor.diagonal().asDiagonal();
+  } else {
+    side->angular_metric.noalias() = angular * body.inverse_inertia_factor;
+  }
+}
+
 /// L of the frame: rows n, t1, t2, 0.
 inline Eigen::Matrix<double, 4, 3> ContactLinearRows(const ContactFrame& frame) {
   Eigen::Matrix<double, 4, 3> linear;
@@ -78,16 +91,27 @@ inline Eigen::Vector4d SideVelocity(const ContactJacobian& jacobian, const Conta
   return side.sign * (jacobian.linear * linear_velocity + side.angular * angular_velocity_body);
 }
 
-/// The block sign_s sign_t (L_i L_jᵀ/m + J_s Θ⁻¹ J_tᵀ) of G_ij (16) for two sides on one body
-/// L has a zero drilling row: only its 3 × 3 part is formed.
+/// The block sign_s sign_t (L_i L_jᵀ/m + J_s Θ⁻¹ J_tᵀ) of G_ij (16) for two sides on one body,
+/// J_s Θ⁻¹ J_tᵀ = (J_s R)(J_t R)ᵀ. L has a zero drilling row: only its 3 × 3 part is formed.
 inline Eigen::Matrix4d SideDelassusBlock(const BodyInertia& body, const ContactJacobian& i,
                                          const ContactSide& s, const ContactJacobian& j,
                                          const ContactSide& t) {
   Eigen::Matrix4d block;
-  block.noalias() = s.angular * body.inverse_inertia * t.angular.transpose();
+  block.noalias() = s.angular_metric * t.angular_metric.transpose();
   block.topLeftCorner<3, 3>().noalias() +=
       body.inverse_mass * (i.linear.topRows<3>() * j.linear.topRows<3>().transpose());
   if (s.sign * t.sign < 0.0) block = -block;
+  return block;
+}
+
+/// The same for one side with itself, the part of G_ii its body gives: L Lᵀ = diag(1, 1, 1, 0)
+/// (n, t1, t2 orthonormal) and (J R)(J R)ᵀ symmetric, only its upper triangle computed.
+inline Eigen::Matrix4d OwnDelassusBlock(const BodyInertia& body, const ContactSide& s) {
+  Eigen::Matrix4d block;
+  block.noalias() = s.angular_metric * s.angular_metric.transpose();
+  block(0, 0) += body.inverse_mass;
+  block(1, 1) += body.inverse_mass;
+  block(2, 2) += body.inverse_mass;
   return block;
 }
 
