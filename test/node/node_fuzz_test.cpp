@@ -69,14 +69,12 @@ class Fuzzer {
 // Calls whose TCP exchange failed (roscpp's call() false without an exception in the node: it
 // would log it) and that were answered when tried again. One such failure was seen in a fresh-clone
 // CI run on a loaded machine, not reproduced in 10 runs since; a node that died fails the retry.
-// The likely cause is roscpp's hang-up race on one-shot service connections (ros/ros_comm#1976,
-// ros_test_helpers.h): the client is persistent now, the retry stays as the guard.
 int g_retried_calls = 0;
 constexpr int kMaxRetriedCalls = 3;
 
 template <typename S>
 void CallTimed(ros::NodeHandle& nh, const std::string& name, S srv) {
-  ros::ServiceClient client = nh.serviceClient<S>(kNode + name, /*persistent=*/true);
+  ros::ServiceClient client = nh.serviceClient<S>(kNode + name);
   ASSERT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name;
   const auto start = std::chrono::steady_clock::now();
   bool answered = client.call(srv);
@@ -84,8 +82,6 @@ void CallTimed(ros::NodeHandle& nh, const std::string& name, S srv) {
     ++g_retried_calls;
     std::cerr << "node_fuzz_test: " << name << ": no answer, retried (" << g_retried_calls
               << ")" << std::endl;
-    // a persistent client whose connection failed stays invalid: a new one
-    client = nh.serviceClient<S>(kNode + name, /*persistent=*/true);
     ASSERT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name << ": the node is gone";
     answered = client.call(srv);
   }

@@ -138,14 +138,9 @@ class Recorder {
 };
 
 /// Calls service `name` (waiting up to 20 s for it); a transport failure fails the test.
-/// The client is persistent: with a one-shot connection the server closes the socket right after
-/// its response, and roscpp 1.15 may see that hang-up (POLLRDHUP) before reading the response
-/// and report the call as failed (ros/ros_comm#1976). Seen once in a fresh-clone CI run on a
-/// loaded machine (node_step_test, 2026-12-03); a persistent connection stays open until the
-/// client is destroyed.
 template <typename S>
 S Call(ros::NodeHandle& nh, const std::string& name, S srv = S()) {
-  ros::ServiceClient client = nh.serviceClient<S>(name, /*persistent=*/true);
+  ros::ServiceClient client = nh.serviceClient<S>(name);
   EXPECT_TRUE(client.waitForExistence(ros::Duration(20.0))) << name;
   EXPECT_TRUE(client.call(srv)) << name;
   return srv;
