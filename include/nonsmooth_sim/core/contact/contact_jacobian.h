@@ -38,7 +38,8 @@ struct ContactSide {
   int body = -1;      ///< body index; -1 = no side (static collider)
   double sign = 1.0;  ///< +1 on B, -1 on A
   Eigen::Matrix<double, 4, 3> angular = Eigen::Matrix<double, 4, 3>::Zero();  ///< J, in K
-  /// J R with Θ⁻¹ = R Rᵀ of the body (BodyInertia): J Θ⁻¹ Jᵀ of G as a product of two (SetAngular)
+  /// J R with Θ⁻¹ = R Rᵀ of the body (BodyInertia): J Θ⁻¹ Jᵀ of G as a product of two
+  /// (SetAngularRows sets both)
   Eigen::Matrix<double, 4, 3> angular_metric = Eigen::Matrix<double, 4, 3>::Zero();
 };
 
@@ -105,7 +106,7 @@ inline Eigen::Matrix4d SideDelassusBlock(const BodyInertia& body, const ContactJ
 }
 
 /// The same for one side with itself, the part of G_ii its body gives: L Lᵀ = diag(1, 1, 1, 0)
-/// (n, t1, t2 orthonormal) and (J R)(J R)ᵀ symmetric, only its upper triangle computed.
+/// (n, t1, t2 orthonormal), so only (J R)(J R)ᵀ is a product.
 inline Eigen::Matrix4d OwnDelassusBlock(const BodyInertia& body, const ContactSide& s) {
   Eigen::Matrix4d block;
   block.noalias() = s.angular_metric * s.angular_metric.transpose();
