@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/ball_contact_solve.h"
 #include "nonsmooth_sim/core/transformation.h"
 
 namespace nonsmooth_sim {
@@ -329,9 +330,9 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
   Prepare(problem, options, *lambda, rim_hints);
   // one contact (a top on the ground) is the common island: its loops unrolled
   if (m == 1) {
-    IterateOf<true>(options, statistics);
+    IterateOne(options, statistics);
   } else {
-    IterateOf<false>(options, statistics);
+    IterateOf<false>(options, options.max_iterations, statistics);
   }
 
   for (std::size_t i = 0; i < m; ++i) {
@@ -363,7 +364,7 @@ void ContactSolver::SolveOnePrevalidated(const Eigen::Matrix4d& G, const Eigen::
     g_hat_[0].rightCols(4 - w.dim).setZero();
   }
   PrepareSteps(0, g_hat_[0], options);
-  IterateOf<true>(options, statistics);
+  IterateOne(options, statistics);
   *lambda = w.scale.cwiseProduct(lambda_hat_[0]);
   statistics->normal_projected[0] = w.normal_projected;
   statistics->friction_projected[0] = w.friction_projected;
@@ -371,18 +372,53 @@ void ContactSolver::SolveOnePrevalidated(const Eigen::Matrix4d& G, const Eigen::
 }
 
 template <bool kSingle>
-void ContactSolver::IterateOf(const SolverOptions& options, SolverStatistics* statistics) {
+void ContactSolver::IterateOf(const SolverOptions& options, int max_iterations,
+                              SolverStatistics* statistics) {
   switch (options.type) {
     case SolverType::kJacobi:
-      Iterate<SolverType::kJacobi, kSingle>(options, statistics);
+      Iterate<SolverType::kJacobi, kSingle>(options, max_iterations, statistics);
       break;
     case SolverType::kModifiedJacobi:
-      Iterate<SolverType::kModifiedJacobi, kSingle>(options, statistics);
+      Iterate<SolverType::kModifiedJacobi, kSingle>(options, max_iterations, statistics);
       break;
     case SolverType::kGaussSeidel:
-      Iterate<SolverType::kGaussSeidel, kSingle>(options, statistics);
+      Iterate<SolverType::kGaussSeidel, kSingle>(options, max_iterations, statistics);
       break;
   }
+}
+
+[[gnu::always_inline]] inline
+void ContactSolver::IterateOne(const SolverOptions& options, SolverStatistics* statistics) {
+  const int budget = options.max_iterations;
+  const bool may_solve_directly = options.direct_one_contact && budget > kDirectSolveAfter;
+  IterateOf<true>(options, may_solve_directly ? kDirectSolveAfter : budget, statistics);
+  if (may_solve_directly && !statistics->converged) ContinueDirectly(options, statistics);
+}
+
+[[gnu::cold]]
+void ContactSolver::ContinueDirectly(const SolverOptions& options, SolverStatistics* statistics) {
+  const int budget = options.max_iterations;
+  const ContactWork& w = work_[0];
+  const int spent = statistics->iterations;
+  // the iterated set as {||D⁻¹Λ̂_F|| ≤ μΛ̂_N}: S_F (mapped, D = I), E_F (D = diag(1, 1, R̄)), the
+  // disk of 3-component contacts; B_F and C_F are not balls
+  Eigen::Vector3d metric = Eigen::Vector3d::Ones();
+  bool ball = w.dim < 4 || w.set == FrictionSet::kSphere;
+  if (w.dim == 4 && w.set == FrictionSet::kEllipsoid) {
+    ball = true;
+    metric.z() = w.set_rbar;
+  }
+  Eigen::Vector4d direct;
+  if (ball && SolveBallContact(g_hat_[0], c_hat_[0], w.dim, w.mu, metric, &direct)) {
+    // from the direct solution, the iteration checks it with the stopping rule (one iteration
+    // where it is the fixed point)
+    lambda_hat_[0] = direct;
+    change_[0].setZero();
+    previous_change_[0].setZero();
+  }
+  // otherwise the iteration goes on where it stopped, with the rest of the budget
+  IterateOf<true>(options, budget - spent, statistics);
+  statistics->iterations += spent;
 }
 
 [[gnu::always_inline]] inline
@@ -492,7 +528,8 @@ void ContactSolver::PrepareSteps(std::size_t i, const Eigen::Matrix4d& g_hat_ii,
 }
 
 template <SolverType kType, bool kSingle>
-void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* statistics) {
+void ContactSolver::Iterate(const SolverOptions& options, int max_iterations,
+                            SolverStatistics* statistics) {
   constexpr bool kModified = kType != SolverType::kJacobi;
   constexpr bool kGaussSeidel = kType == SolverType::kGaussSeidel;
   const std::size_t m = kSingle ? 1 : work_.size();
@@ -511,7 +548,7 @@ void ContactSolver::Iterate(const SolverOptions& options, SolverStatistics* stat
   bool converged = false;
   bool finite = true;
   int iteration = 0;
-  while (iteration < options.max_iterations && !converged && finite) {
+  while (iteration < max_iterations && !converged && finite) {
     ++iteration;
     converged = true;
     for (std::size_t i = 0; i < m; ++i) {

@@ -216,6 +216,9 @@ std::string UsageText() {
     << kMinRelaxation << ", 2) (default 1)\n"
        "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
        "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
+       "  --no-direct-solve     the iteration alone: no direct solve of a lone ball-set contact\n"
+       "                        that has not converged after "
+    << kDirectSolveAfter << " iterations\n"
        "  --mu MU               friction coefficient of every contact (default: 0.3 for the\n"
        "                        Tippe-Top, the URDF's for --urdf)\n"
        "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4 for\n"
@@ -268,6 +271,10 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
       }
       if (arg == "--direct-drilling-sets") {
         config.options.solver.map_drilling_sets = false;
+        continue;
+      }
+      if (arg == "--no-direct-solve") {
+        config.options.solver.direct_one_contact = false;
         continue;
       }
       if (arg == "--no-gap-correction") {

@@ -1123,6 +1123,7 @@ TEST(BadScaling, ModifiedIterationConvergesWhereJacobiStalls) {
          {SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel}) {
       SimulatorOptions options = Options(1e-3);
       options.solver.type = type;
+      options.solver.direct_one_contact = false;  // the iterations themselves
       Simulator sim(NeedleBall(set, 0.0), options);
       long iterations = 0;
       const RunReport r = RunChecked(&sim, 200, 1e-6, [&](long, const StepStatistics& stats) {
@@ -1160,6 +1161,31 @@ TEST(BadScaling, ModifiedIterationConvergesWhereJacobiStalls) {
     const RunReport rc = RunChecked(&ellipsoid, 200);
     EXPECT_TRUE(rc.finite);
     EXPECT_EQ(rc.dishonest_steps, 0);
+  }
+}
+
+// The same stall of (43), with the direct solve of a lone contact (the default): the ball sets
+// (ellipsoid on E_F, sphere on S_F) converge after it with the normal percussion of the resting
+// ball; cylinder and exact (not balls) still stall.
+TEST(BadScaling, DirectSolveEndsJacobisStallOnTheBallSets) {
+  for (const FrictionSet set : {FrictionSet::kCylinder, FrictionSet::kEllipsoid,
+                                FrictionSet::kSphere, FrictionSet::kExact}) {
+    SimulatorOptions options = Options(1e-3);
+    options.solver.type = SolverType::kJacobi;
+    Simulator sim(NeedleBall(set, 0.0), options);
+    const RunReport r = RunChecked(&sim, 200, 1e-6, [](long, const StepStatistics&) {});
+    const std::string what(FrictionSetName(set));
+    EXPECT_TRUE(r.finite) << what;
+    EXPECT_EQ(r.dishonest_steps, 0) << what;
+    if (set == FrictionSet::kEllipsoid || set == FrictionSet::kSphere) {
+      EXPECT_EQ(r.unconverged_steps, 0) << what;
+      EXPECT_GT(r.min_gap, -1e-12) << what;
+      const ContactState* foot = sim.FindContact(0);
+      ASSERT_NE(foot, nullptr) << what;
+      EXPECT_NEAR(foot->percussion[0], 9.81e-3, 1e-12) << what;
+    } else {
+      EXPECT_GT(r.unconverged_steps, 0) << what;
+    }
   }
 }
 
