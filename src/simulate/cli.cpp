@@ -216,8 +216,8 @@ std::string UsageText() {
     << kMinRelaxation << ", 2) (default 1)\n"
        "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
        "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
-       "  --no-direct-solve     the iteration alone: no direct solve of a lone ball-set contact\n"
-       "                        that has not converged after "
+       "  --no-direct-solve     the iteration alone: no direct solve of ball-set contacts\n"
+       "                        whose iteration has not converged after "
     << kDirectSolveAfter << " iterations\n"
        "  --mu MU               friction coefficient of every contact (default: 0.3 for the\n"
        "                        Tippe-Top, the URDF's for --urdf)\n"
@@ -274,7 +274,7 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
         continue;
       }
       if (arg == "--no-direct-solve") {
-        config.options.solver.direct_one_contact = false;
+        config.options.solver.direct_solve = false;
         continue;
       }
       if (arg == "--no-gap-correction") {

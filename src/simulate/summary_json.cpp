@@ -119,7 +119,7 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("solver_max_iterations", c.options.solver.max_iterations);
   json.Add("relaxation", c.options.solver.relaxation);
   json.Add("map_drilling_sets", c.options.solver.map_drilling_sets);
-  json.Add("direct_one_contact", c.options.solver.direct_one_contact);
+  json.Add("direct_solve", c.options.solver.direct_solve);
   json.Add("mu", c.parameters.mu);
   json.Add("contact_radius", c.parameters.contact_radius);
   json.Add("inclination_initial", c.initial.inclination);

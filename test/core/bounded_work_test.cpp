@@ -110,7 +110,7 @@ TEST(BoundedWork, StepsAtTheLargestAcceptedSettingsEndInBoundedTime) {
   options.solver.tolerance_abs = 0.0;
   // the iteration alone: the direct solve of a lone contact ends these steps after ~105
   // iterations (it reaches the exact fixed point), the worst case is without it
-  options.solver.direct_one_contact = false;
+  options.solver.direct_solve = false;
   Simulator sim(MakeTippeTopScene(), options);
   int most = 0;
   double slowest = 0.0;

@@ -1123,7 +1123,7 @@ TEST(BadScaling, ModifiedIterationConvergesWhereJacobiStalls) {
          {SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel}) {
       SimulatorOptions options = Options(1e-3);
       options.solver.type = type;
-      options.solver.direct_one_contact = false;  // the iterations themselves
+      options.solver.direct_solve = false;  // the iterations themselves
       Simulator sim(NeedleBall(set, 0.0), options);
       long iterations = 0;
       const RunReport r = RunChecked(&sim, 200, 1e-6, [&](long, const StepStatistics& stats) {

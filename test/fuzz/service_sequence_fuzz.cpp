@@ -148,7 +148,7 @@ struct Snapshot {
            a.solver.max_iterations == b.solver.max_iterations &&
            fuzz::SameBits(a.solver.relaxation, b.solver.relaxation) &&
            a.solver.map_drilling_sets == b.solver.map_drilling_sets &&
-           a.solver.direct_one_contact == b.solver.direct_one_contact &&
+           a.solver.direct_solve == b.solver.direct_solve &&
            a.gyroscopic == b.gyroscopic && a.gap_correction == b.gap_correction;
   }
 

@@ -174,7 +174,7 @@ TEST(Rattleback, DISABLED_FrictionlessRockingNeverGainsEnergy) {
 // component is at its stick/slip transition, where the Gauss-Seidel iteration creeps (Ĝ_ττ ~1e-6
 // Ĝ_TT in the mapped coordinates): 4 of the 50 000 steps ended at max_iterations = 1000 with
 // residual up to 3.5e5 before the direct solve of a lone ball-set contact
-// (SolverOptions::direct_one_contact, ball_contact_solve.h). The same run with the direct solve
+// (SolverOptions::direct_solve, ball_contact_solve.h). The same run with the direct solve
 // switched off shows them, so the test fails without it.
 TEST(Rattleback, ContactSolverConvergesThroughTheReversal) {
   const SpinRun r = RunSpin(LoadShippedScene("rattleback"), 5.0);
@@ -186,7 +186,7 @@ TEST(Rattleback, ContactSolverConvergesThroughTheReversal) {
 // the check that the run of the test above exercises the direct solve.
 TEST(Rattleback, IterationAloneCreepsThroughTheReversal) {
   SimulatorOptions options = RattlebackOptions();
-  options.solver.direct_one_contact = false;
+  options.solver.direct_solve = false;
   const SpinRun r = RunSpin(LoadShippedScene("rattleback"), 5.0, options);
   EXPECT_GT(r.unconverged_steps, 0);
 }

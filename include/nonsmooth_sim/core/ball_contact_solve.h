@@ -18,7 +18,8 @@
 // Newton's method on the secular equation 1/||x(λ)|| = 1/ρ from λ = 0 (Moré & Sorensen, 1983;
 // monotone, as 1/||x(λ)|| is concave). The normal row of (17) is then the scalar equation
 //   n = max(0, -(c_N + G_NF Λ_F(n)) / G_NN)                                                  (b)
-// solved by bisection on a bracket [0, n_hi] (its right side minus n changes sign there). A pair
+// solved on a bracket [0, n_hi] (its right side minus n changes sign there) by the Illinois
+// variant of regula falsi. A pair
 // (n, Λ_F(n)) solving (b) solves (17) for the contact, and every solution of (17) is one.
 #ifndef NONSMOOTH_SIM_CORE_BALL_CONTACT_SOLVE_H_
 #define NONSMOOTH_SIM_CORE_BALL_CONTACT_SOLVE_H_
@@ -27,13 +28,34 @@
 
 namespace nonsmooth_sim {
 
-/// Solves (17) for one contact: G (4 × 4, symmetric positive definite on the first `dim` rows and
-/// columns; the rest is ignored) and c over (N, T1, T2, τ), `dim` ∈ {1, 3, 4} components, friction
-/// coefficient `mu`, the friction set's diagonal map `friction_metric` = (d_T1, d_T2, d_τ) (all
-/// > 0; d_τ unused for dim 3). On success writes Λ (zero beyond `dim`) and returns true; returns
-/// false, leaving *lambda as it was, if G's blocks are not positive definite or no bracket of (b)
-/// is found within 2^64 times the frictionless normal percussion (μ too large for the coupling
-/// G_NF: (b) then may have no solution). Deterministic, no allocation, never throws.
+/// The direct solve for one contact whose G, dimension, μ and set stay while c changes (a block
+/// Gauss-Seidel sweep over several contacts): the eigen-decomposition of D G_FF D once per Reset.
+class BallContactSolver {
+ public:
+  /// G (4 × 4, symmetric positive definite on the first `dim` rows and columns; the rest is
+  /// ignored) over (N, T1, T2, τ), `dim` ∈ {1, 3, 4} components, friction coefficient `mu`, the
+  /// friction set's diagonal map `friction_metric` = (d_T1, d_T2, d_τ) (all > 0; d_τ unused for
+  /// dim 3). False if G's blocks are not positive definite or the metric is not positive (Solve
+  /// then fails).
+  bool Reset(const Eigen::Matrix4d& G, int dim, double mu, const Eigen::Vector3d& friction_metric);
+  /// (17) for this c: on success writes Λ (zero beyond `dim`) and returns true; returns false,
+  /// leaving *lambda as it was, after a failed Reset or if no bracket of (b) is found within 2^64
+  /// times the frictionless normal percussion (μ too large for the coupling G_NF: (b) then may
+  /// have no solution). Deterministic, no allocation, never throws.
+  bool Solve(const Eigen::Vector4d& c, Eigen::Vector4d* lambda) const;
+
+ private:
+  bool valid_ = false;
+  int dim_ = 1;
+  double mu_ = 0.0;
+  double g_nn_ = 0.0;
+  Eigen::Vector3d g_fn_ = Eigen::Vector3d::Zero();      // G_FN, zero-padded
+  Eigen::Vector3d metric_ = Eigen::Vector3d::Ones();    // D, padded with 1
+  Eigen::Matrix3d eigenvectors_ = Eigen::Matrix3d::Identity();  // of D G_FF D (padded: I)
+  Eigen::Vector3d eigenvalues_ = Eigen::Vector3d::Ones();
+};
+
+/// Reset and Solve in one call, for one problem.
 bool SolveBallContact(const Eigen::Matrix4d& G, const Eigen::Vector4d& c, int dim, double mu,
                       const Eigen::Vector3d& friction_metric, Eigen::Vector4d* lambda);
 

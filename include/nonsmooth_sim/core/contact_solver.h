@@ -116,12 +116,15 @@
 // contacts), the solver stops and returns the last finite iterate with converged = false and
 // residual = max_change = +inf.
 //
-// One contact with a ball set (sphere, ellipsoid, coulomb; kDirectSolveAfter): where the iteration
+// Contacts with ball sets (sphere, ellipsoid, coulomb; kDirectSolveAfter): where the iteration
 // creeps (a drilling stick/slip transition: Ĝ_ττ ~1e-6 Ĝ_TT, the natural step along τ leaves the
-// set and the step r̂_F barely moves Λ̂_τ) the contact's inclusion is solved directly — a
-// trust-region subproblem for the friction block inside a bisection on Λ_N (ball_contact_solve.h)
-// — and the iteration goes on from that solution, so that `converged` keeps its meaning: the
-// stopping rule above passed.
+// set and the step r̂_F barely moves Λ̂_τ) each contact's inclusion is solved directly — a
+// trust-region subproblem for the friction block inside a root search on Λ_N
+// (ball_contact_solve.h) — one contact at once, several by block Gauss-Seidel sweeps (at most 200,
+// until Λ̂ changes by less than 1e-13 of its size); the iteration goes on from that solution, so
+// that `converged` keeps its meaning: the stopping rule above passed. The sweeps do not remove the
+// drift of a statically indeterminate support (three or more contacts on one body can share the
+// load in many ways): such islands can still end unconverged.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 #define NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 
@@ -167,11 +170,12 @@ std::string SolverTypeNameList();
 /// converged reference solutions of single problems in the tests use; a Simulator, which solves
 /// every step, has the tighter kMaxSimulatorIterations (simulator.h).
 inline constexpr int kMaxSolverIterations = 1000000;
-/// With SolverOptions::direct_one_contact, a problem of one contact whose friction set is a ball
-/// up to a diagonal map (sphere, ellipsoid, coulomb) and whose iteration has not converged after
-/// this many iterations is solved directly
-/// (ball_contact_solve.h) and the iteration restarted from that solution, within the same
-/// max_iterations. Above every converging solve of the shipped scenes (at most 91 iterations, the
+/// With SolverOptions::direct_solve, a problem whose contacts all have a friction set that is a
+/// ball up to a diagonal map (sphere, ellipsoid, coulomb) and whose iteration has not converged
+/// after this many iterations is solved directly (ball_contact_solve.h; several contacts, with
+/// kGaussSeidel only, by block Gauss-Seidel sweeps, each contact solved directly) and the
+/// iteration restarted from that
+/// solution, within the same max_iterations. Above every converging solve of the shipped scenes (at most 91 iterations, the
 /// rattleback, 8 s runs with sphere): where the iteration converges it is unchanged.
 inline constexpr int kDirectSolveAfter = 100;
 
@@ -199,10 +203,10 @@ struct SolverOptions {
   /// iterations when sliding); false = on the original sets (37), as the paper's B_F timing.
   /// `sphere` is always mapped, `ellipsoid` and `coulomb` never (see the table above).
   bool map_drilling_sets = true;
-  /// Solve a one-contact problem with a ball set directly where the iteration has not converged
-  /// after kDirectSolveAfter iterations (ball_contact_solve.h); false = the iteration alone, as
+  /// Solve a problem of ball sets directly where the iteration has not converged after
+  /// kDirectSolveAfter iterations (ball_contact_solve.h, above); false = the iteration alone, as
   /// the paper's (studies of the iteration itself).
-  bool direct_one_contact = true;
+  bool direct_solve = true;
 };
 
 /// Throws std::invalid_argument naming the offending field and its allowed range.
@@ -343,6 +347,8 @@ class ContactSolver {
   void IterateOne(const SolverOptions& options, SolverStatistics* statistics);
   // IterateOne's rare part: the direct solve and the rest of the budget
   void ContinueDirectly(const SolverOptions& options, SolverStatistics* statistics);
+  // The same for several contacts: block Gauss-Seidel sweeps, each contact solved directly
+  void ContinueBlockDirectly(const SolverOptions& options, SolverStatistics* statistics);
   void ResizeWorkspace(std::size_t m);
 
   // workspace reused across calls: padded 4 × 4 blocks Ĝ_ij (row-major over contacts), ĉ_i, the
