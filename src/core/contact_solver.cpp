@@ -427,7 +427,8 @@ void ContactSolver::ContinueDirectly(const SolverOptions& options, SolverStatist
   const int spent = statistics->iterations;
   Eigen::Vector3d metric;
   Eigen::Vector4d direct;
-  if (BallMetric(w, &metric) && SolveBallContact(g_hat_[0], c_hat_[0], w.dim, w.mu, metric, &direct)) {
+  if (BallMetric(w, &metric) &&
+      SolveBallContact(g_hat_[0], c_hat_[0], w.dim, w.mu, metric, &direct)) {
     // from the direct solution, the iteration checks it with the stopping rule (one iteration
     // where it is the fixed point)
     lambda_hat_[0] = direct;
