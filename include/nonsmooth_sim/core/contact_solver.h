@@ -178,6 +178,10 @@ inline constexpr int kMaxSolverIterations = 1000000;
 /// solution, within the same max_iterations. Above every converging solve of the shipped scenes (at most 91 iterations, the
 /// rattleback, 8 s runs with sphere): where the iteration converges it is unchanged.
 inline constexpr int kDirectSolveAfter = 100;
+// Even: after an even number of iterations the iteration's two change buffers are where a call
+// that continues it expects them, so a problem the direct solve cannot take (B_F, C_F) continues
+// bit for bit as the uninterrupted iteration would.
+static_assert(kDirectSolveAfter % 2 == 0);
 
 /// Smallest SolverOptions::relaxation α. Without the prox, a component k moves by α/Ĝ_kk·ξ̂_k, so
 /// on a decoupled contact the error contracts by |1 - α| per iteration and reaching a relative
