@@ -19,8 +19,8 @@
 // monotone, as 1/||x(λ)|| is concave). The normal row of (17) is then the scalar equation
 //   n = max(0, -(c_N + G_NF Λ_F(n)) / G_NN)                                                  (b)
 // solved on a bracket [0, n_hi] (its right side minus n changes sign there) by the Illinois
-// variant of regula falsi. A pair
-// (n, Λ_F(n)) solving (b) solves (17) for the contact, and every solution of (17) is one.
+// variant of regula falsi. A pair (n, Λ_F(n)) solving (b) solves (17) for the contact, and every
+// solution of (17) is one.
 #ifndef NONSMOOTH_SIM_CORE_BALL_CONTACT_SOLVE_H_
 #define NONSMOOTH_SIM_CORE_BALL_CONTACT_SOLVE_H_
 
