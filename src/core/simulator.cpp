@@ -118,8 +118,10 @@ void Simulator::BuildCaches() {
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     if (scene_.colliders[i].body == kWorld) collider_pose_[i] = scene_.colliders[i].pose;
   }
+  spheres_.clear();
   spheres_.reserve(scene_.colliders.size());
   pairs_.reserve(2 * scene_.colliders.size());
+  merged_pairs_.reserve(2 * scene_.colliders.size());
   closed_.reserve(2 * scene_.colliders.size());
   closed_count_ = 0;
   contacts_.reserve(2 * scene_.colliders.size());

@@ -7,6 +7,7 @@
 
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/contact/contact_key.h"
+#include "nonsmooth_sim/core/nearly_sorted.h"
 #include "nonsmooth_sim/core/simulator.h"
 
 namespace nonsmooth_sim {
@@ -49,30 +50,52 @@ void Simulator::UpdateColliderPose(int collider, bool end) {
 void Simulator::FindContacts(StepStatistics* stats) {
   closed_count_ = 0;
   pairs_.clear();
-  spheres_.clear();
   // broad phase: every body collider against every static plane, the rest by sweep and prune
   for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
     const Collider& c = scene_.colliders[i];
     if (c.shape.type == ShapeType::kPlane) continue;
     UpdateColliderPose(static_cast<int>(i), /*end=*/false);
+    if (c.body == kWorld) continue;
     const Eigen::Vector3d center = collider_pose_[i].translation();
-    const double radius = bounding_radius_[i];
-    if (c.body != kWorld) {
-      for (int p : planes_) {
-        const Eigen::Isometry3d& plane = scene_.colliders[static_cast<std::size_t>(p)].pose;
-        // height of the centre above the plane z = 0 of the plane frame
-        const double height = plane.linear().col(2).dot(center - plane.translation());
-        if (height <= radius) {
-          pairs_.emplace_back(std::min(static_cast<int>(i), p), std::max(static_cast<int>(i), p));
-        }
+    for (int p : planes_) {
+      const Eigen::Isometry3d& plane = scene_.colliders[static_cast<std::size_t>(p)].pose;
+      // height of the centre above the plane z = 0 of the plane frame
+      const double height = plane.linear().col(2).dot(center - plane.translation());
+      if (height <= bounding_radius_[i]) {
+        pairs_.emplace_back(std::min(static_cast<int>(i), p), std::max(static_cast<int>(i), p));
       }
     }
-    if (needs_sweep_)
-      spheres_.push_back(BoundingSphere{center, radius, static_cast<int>(i), c.body});
   }
-  if (needs_sweep_) SweepAndPrune(&spheres_, &pairs_);
-  // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep)
-  std::sort(pairs_.begin(), pairs_.end());
+  // in collider order, unless a plane comes between a body's colliders
+  SortNearlySorted(pairs_.begin(), pairs_.end());
+  if (needs_sweep_) {
+    // the spheres in the sweep order of the last step (BuildCaches empties it)
+    if (spheres_.empty()) {
+      for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
+        const Collider& c = scene_.colliders[i];
+        if (c.shape.type == ShapeType::kPlane) continue;
+        spheres_.push_back(
+            BoundingSphere{Eigen::Vector3d::Zero(), 0.0, static_cast<int>(i), c.body});
+      }
+    }
+    for (BoundingSphere& sphere : spheres_) {
+      const std::size_t i = static_cast<std::size_t>(sphere.collider);
+      sphere.center = collider_pose_[i].translation();
+      sphere.radius = bounding_radius_[i];
+    }
+    // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep),
+    // the sweep's pairs sorted apart and merged with the planes'
+    const std::size_t plane_pairs = pairs_.size();
+    SweepAndPrune(&spheres_, &pairs_);
+    if (pairs_.size() > plane_pairs) {
+      std::sort(pairs_.begin() + static_cast<std::ptrdiff_t>(plane_pairs), pairs_.end());
+      merged_pairs_.resize(pairs_.size());
+      std::merge(pairs_.begin(), pairs_.begin() + static_cast<std::ptrdiff_t>(plane_pairs),
+                 pairs_.begin() + static_cast<std::ptrdiff_t>(plane_pairs), pairs_.end(),
+                 merged_pairs_.begin());
+      pairs_.swap(merged_pairs_);
+    }
+  }
   for (const auto& [first, second] : pairs_) AddPairContacts(first, second);
   stats->closed_contacts = static_cast<int>(closed_count_);
 }
@@ -293,13 +316,14 @@ void Simulator::CorrectGaps(StepStatistics* stats) {
     i = j;
   }
   // merge the records of one group: the highest end gap decides, with its normal
-  if (gap_groups_.size() > 1)
-    std::sort(gap_groups_.begin(), gap_groups_.end(), [](const GapGroup& x, const GapGroup& y) {
-      if (x.body_b != y.body_b) return x.body_b < y.body_b;
-      if (x.body_a != y.body_a) return x.body_a < y.body_a;
-      if (x.static_collider != y.static_collider) return x.static_collider < y.static_collider;
-      return x.highest_gap > y.highest_gap;
-    });
+  // (the records come in pair order: nearly sorted by body already)
+  const auto by_group = [](const GapGroup& x, const GapGroup& y) {
+    if (x.body_b != y.body_b) return x.body_b < y.body_b;
+    if (x.body_a != y.body_a) return x.body_a < y.body_a;
+    if (x.static_collider != y.static_collider) return x.static_collider < y.static_collider;
+    return x.highest_gap > y.highest_gap;
+  };
+  SortNearlySorted(gap_groups_.begin(), gap_groups_.end(), by_group);
   for (std::size_t k = 0; k < gap_groups_.size(); ++k) {
     const GapGroup& g = gap_groups_[k];
     if (k > 0 && g.body_b == gap_groups_[k - 1].body_b && g.body_a == gap_groups_[k - 1].body_a &&

@@ -466,8 +466,11 @@ class Simulator {
   bool any_wrench_ = false;
   // workspace of Step(), sized once
   std::vector<BodyStep> body_step_;
+  // the colliders that are not planes in the sweep order of the last step (emptied by
+  // BuildCaches): nearly sorted for the next step's sweep
   std::vector<BoundingSphere> spheres_;
   std::vector<std::pair<int, int>> pairs_;
+  std::vector<std::pair<int, int>> merged_pairs_;  // FindContacts' merge of plane and sweep pairs
   // closed_[0, closed_count_): the contacts of this step; the storage only grows (a contact is
   // not cheap to construct, every field is written when it is reused)
   std::vector<ClosedContact> closed_;
