@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/all_finite.h"
 #include "nonsmooth_sim/core/ball_contact_solve.h"
 #include "nonsmooth_sim/core/transformation.h"
 
@@ -642,7 +643,7 @@ void ContactSolver::Iterate(const SolverOptions& options, int max_iterations,
     std::swap(change, previous_change);
     // keep the last finite iterate if the iteration diverged (NaN fails the test above)
     if (!converged) {
-      for (std::size_t i = 0; i < m; ++i) finite = finite && next[i].allFinite();
+      for (std::size_t i = 0; i < m; ++i) finite = finite && AllFinite(next[i]);
     }
     if (finite) std::swap(current, next);
   }

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "nonsmooth_sim/core/all_finite.h"
+
 namespace nonsmooth_sim {
 namespace {
 
@@ -33,8 +35,8 @@ double BodyEnergy(const RigidBody& body, const Eigen::Vector3d& gravity,
 // What (13) and the free velocities produced from one body's q_B, u_B.
 bool MidpointIsFinite(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
                       const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
-  return position.allFinite() && orientation.coeffs().allFinite() && linear.allFinite() &&
-         angular.allFinite();
+  return AllFinite(position) && AllFinite(orientation.coeffs()) && AllFinite(linear) &&
+         AllFinite(angular);
 }
 
 }  // namespace
@@ -223,7 +225,7 @@ void Simulator::Step(StepStatistics* out) {
     energy = 0.0;
     for (std::size_t b = 0; gap_moved_ && corrected_finite && b < state_.size(); ++b) {
       const BodyState& s = state_[b];
-      corrected_finite = s.position.allFinite() && s.orientation.coeffs().allFinite();
+      corrected_finite = AllFinite(s.position) && AllFinite(s.orientation.coeffs());
       energy += BodyEnergy(scene_.bodies[b], scene_.gravity, s.position, s.linear_velocity,
                            s.angular_velocity);
     }
@@ -308,8 +310,8 @@ bool Simulator::ComputeEndState() {
     w.rotation_end = w.orientation_end.toRotationMatrix();
     // the squared norms too: a state whose energy overflows is as lost as one with an inf
     finite = finite && std::isfinite(w.linear_end.squaredNorm()) &&
-             std::isfinite(w.angular_end.squaredNorm()) && w.position_end.allFinite() &&
-             w.orientation_end.coeffs().allFinite();
+             std::isfinite(w.angular_end.squaredNorm()) && AllFinite(w.position_end) &&
+             AllFinite(w.orientation_end.coeffs());
   }
   return finite;
 }

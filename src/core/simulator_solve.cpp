@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "nonsmooth_sim/core/all_finite.h"
 #include "nonsmooth_sim/core/simulator.h"
 
 namespace nonsmooth_sim {
@@ -134,9 +135,9 @@ bool Simulator::SolveLoneContact(const Island& island, StepStatistics* stats) {
                         : std::numeric_limits<double>::quiet_NaN();
   const Eigen::Matrix4d G = DelassusBlock(c, c);
   // a body far away can overflow G, a diverged state (huge ω) c: not solved
-  if (!G.allFinite()) return false;
+  if (!AllFinite(G)) return false;
   const Eigen::Vector4d free_velocity = FreeContactVelocity(c);
-  if (!free_velocity.allFinite()) return false;
+  if (!AllFinite(free_velocity)) return false;
   solver_.SolveOnePrevalidated(G, free_velocity, c.report.law, options_.solver, &lambda,
                                &island_stats_, exact ? &rim_hint : nullptr);
   // (18) on its one or two bodies
@@ -208,7 +209,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       block = DelassusBlock(a, contact(j));
       if (j != i) problem_.G[static_cast<std::size_t>(j * m + i)] = block.transpose();
       // a body far away can overflow G: not solved
-      if (!block.allFinite()) return false;
+      if (!AllFinite(block)) return false;
     }
   }
 
@@ -222,7 +223,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
     for (int k = 0; k < m; ++k) {
       Eigen::Vector4d& ci = problem_.c[static_cast<std::size_t>(k)];
       ci = FreeContactVelocity(contact(k));
-      finite = finite && ci.allFinite();
+      finite = finite && AllFinite(ci);
     }
     // a diverged state (huge ω) can overflow c: not solved
     if (!finite) return false;
