@@ -272,8 +272,8 @@ void Simulator::ComputeMidpoints(StepStatistics* stats, bool* finite) {
     w.orientation_mid = AdvanceOrientation(s.orientation, s.angular_velocity, half_dt).normalized();
     w.rotation_mid = w.orientation_mid.toRotationMatrix();
     w.linear_free = s.linear_velocity + dt * scene_.gravity;
-    w.gyroscopic_impulse = dt * GyroscopicTorque(body.inertia, s.angular_velocity);
-    w.angular_free = s.angular_velocity + body.inverse_inertia * w.gyroscopic_impulse;
+    w.gyroscopic_impulse = dt * GyroscopicTorque(body, s.angular_velocity);
+    w.angular_free = s.angular_velocity + InverseInertiaTimes(body, w.gyroscopic_impulse);
     // the external wrench enters h(q_M, u_B) with gravity: v += Δt F/m, ω += Θ⁻¹ Δt A(p_M)ᵀτ
     // (A(p_B) would be first order in the torque's turning); skipped without one, so that a world
     // without wrenches steps exactly as before
@@ -281,7 +281,7 @@ void Simulator::ComputeMidpoints(StepStatistics* stats, bool* finite) {
     if (w.external) {
       w.linear_free += (dt * body.inverse_mass) * wrench_[b].force;
       w.angular_external = dt * (w.rotation_mid.transpose() * wrench_[b].torque);
-      w.angular_free += body.inverse_inertia * w.angular_external;
+      w.angular_free += InverseInertiaTimes(body, w.angular_external);
     }
     w.angular_end = w.angular_free;
     w.linear_contact.setZero();

@@ -152,7 +152,7 @@ bool Simulator::SolveLoneContact(const Island& island, StepStatistics* stats) {
     if (side.body < 0) continue;
     const std::size_t b = static_cast<std::size_t>(side.body);
     BodyStep& w = body_step_[b];
-    w.angular_end = w.angular_free + inertia_[b].inverse_inertia * w.angular_contact;
+    w.angular_end = w.angular_free + InverseInertiaTimes(inertia_[b], w.angular_contact);
   }
   stats->solver.iterations += island_stats_.iterations;
   stats->solver.residual = std::max(stats->solver.residual, island_stats_.residual);
@@ -238,7 +238,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       for (int k = body_begin; k < body_end; ++k) {
         const std::size_t b = static_cast<std::size_t>(island_bodies_[static_cast<std::size_t>(k)]);
         BodyStep& w = body_step_[b];
-        w.angular_end = w.angular_free + inertia_[b].inverse_inertia * w.angular_contact;
+        w.angular_end = w.angular_free + InverseInertiaTimes(inertia_[b], w.angular_contact);
       }
       break;
     }
@@ -251,7 +251,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       const BodyInertia& body = inertia_[b];
       const Eigen::Vector3d& omega_begin = state_[b].angular_velocity;
       const Eigen::Vector3d guess =
-          pass == 0 ? Eigen::Vector3d(w.angular_free + body.inverse_inertia * w.angular_contact)
+          pass == 0 ? Eigen::Vector3d(w.angular_free + InverseInertiaTimes(body, w.angular_contact))
                     : w.angular_end;
       // an external torque's impulse with the contacts' (then gyroscopic_impulse below holds it
       // too, and angular_free stays ω_B + Θ⁻¹ times the impulse of h)
@@ -263,7 +263,7 @@ bool Simulator::SolveIsland(const Island& island, StepStatistics* stats) {
       w.angular_end = omega_end;
       // the gyroscopic impulse -Δt ω_M × Θω_M that this ω_E balances
       w.gyroscopic_impulse = body.inertia * (omega_end - omega_begin) - w.angular_contact;
-      w.angular_free = omega_begin + body.inverse_inertia * w.gyroscopic_impulse;
+      w.angular_free = omega_begin + InverseInertiaTimes(body, w.gyroscopic_impulse);
     }
     if (settled) break;
   }

@@ -247,6 +247,36 @@ TEST(TorqueFree, ImplicitMidpointSolvesItsEquation) {
   EXPECT_LT(residual.norm(), 1e-15);
 }
 
+TEST(TorqueFree, DiagonalInertiaProductsEqualTheFullProducts) {
+  // InverseInertiaTimes and GyroscopicTorque(BodyInertia) take three products where Θ is diagonal
+  // (the step's path for principal bodies): the full 3 × 3 products' values exactly, and the full
+  // products themselves for a body whose Θ is not diagonal
+  std::mt19937 random(20261203);
+  std::uniform_real_distribution<double> uniform(-200.0, 200.0);
+  std::uniform_real_distribution<double> moment(1e-5, 1e-1);
+  const Eigen::Matrix3d off_diagonal =
+      (Eigen::Matrix3d() << 0.0, 1.0, -2.0, 1.0, 0.0, 0.5, -2.0, 0.5, 0.0).finished();
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d diagonal(moment(random), moment(random), moment(random));
+    const BodyInertia principal = MakeBodyInertia(0.3, diagonal.asDiagonal());
+    // diagonally dominant: positive definite
+    const Eigen::Matrix3d full_inertia =
+        Eigen::Matrix3d(diagonal.asDiagonal()) + 0.01 * diagonal.minCoeff() * off_diagonal;
+    const BodyInertia general = MakeBodyInertia(0.3, full_inertia);
+    ASSERT_TRUE(principal.principal);
+    ASSERT_FALSE(general.principal);
+    const Eigen::Vector3d x(uniform(random), uniform(random), uniform(random));
+    for (const BodyInertia* body : {&principal, &general}) {
+      const Eigen::Vector3d inverse_full = body->inverse_inertia * x;
+      const Eigen::Vector3d gyroscopic_full = GyroscopicTorque(body->inertia, x);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(InverseInertiaTimes(*body, x)[k], inverse_full[k]);
+        EXPECT_EQ(GyroscopicTorque(*body, x)[k], gyroscopic_full[k]);
+      }
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Contacts
 

@@ -66,6 +66,20 @@ inline Eigen::Vector3d GyroscopicTorque(const Eigen::Matrix3d& inertia,
   return -angular_velocity_body.cross(inertia * angular_velocity_body);
 }
 
+/// Θ_S⁻¹ x in K, three products where Θ_S is diagonal (BodyInertia::principal, most bodies):
+/// the same values as the full product, whose other terms are zeros.
+inline Eigen::Vector3d InverseInertiaTimes(const BodyInertia& body, const Eigen::Vector3d& x) {
+  if (body.principal) return body.inverse_inertia.diagonal().cwiseProduct(x);
+  return body.inverse_inertia * x;
+}
+
+/// GyroscopicTorque of a body, with the diagonal product where Θ_S is diagonal.
+inline Eigen::Vector3d GyroscopicTorque(const BodyInertia& body,
+                                        const Eigen::Vector3d& angular_velocity_body) {
+  if (!body.principal) return GyroscopicTorque(body.inertia, angular_velocity_body);
+  return -angular_velocity_body.cross(body.inertia.diagonal().cwiseProduct(angular_velocity_body));
+}
+
 /// Implicit midpoint rule on Euler's equations over one step:
 ///   Θ(ω_E - ω_B) = -Δt ω_M × Θ ω_M + angular_impulse,  ω_M = (ω_B + ω_E)/2,
 /// solved by Newton's method to round-off. Without impulse it conserves ½ωᵀΘω and |Θω| exactly
