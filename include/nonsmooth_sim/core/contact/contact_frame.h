@@ -29,15 +29,24 @@ inline ContactFrame MakeContactFrame(const Eigen::Vector3d& normal,
   auto project = [&normal](const Eigen::Vector3d& t) -> Eigen::Vector3d {
     return t - t.dot(normal) * normal;
   };
+  // t1 and its length, which normalises it (one square root: normalized() would take another)
   Eigen::Vector3d t1 = Eigen::Vector3d::Zero();
-  if (previous != nullptr) t1 = project(*previous);
-  if (!(t1.norm() > kMinProjectedTangent)) t1 = project(hint);
-  if (!(t1.norm() > kMinProjectedTangent)) {
+  double length = 0.0;
+  if (previous != nullptr) {
+    t1 = project(*previous);
+    length = t1.norm();
+  }
+  if (!(length > kMinProjectedTangent)) {
+    t1 = project(hint);
+    length = t1.norm();
+  }
+  if (!(length > kMinProjectedTangent)) {
     Eigen::Index axis = 0;
     normal.cwiseAbs().minCoeff(&axis);
     t1 = project(Eigen::Vector3d::Unit(axis));
+    length = t1.norm();
   }
-  frame.tangent1 = t1.normalized();
+  frame.tangent1 = length > 0.0 ? Eigen::Vector3d(t1 / length) : t1;
   frame.tangent2 = normal.cross(frame.tangent1);
   return frame;
 }
