@@ -415,10 +415,16 @@ def main():
     if ref_cpu and peers_single:
         fastest = min(peers_single, key=median_cpu)
         fastest_inverting = [c for c in peers_single if results[c][0]["inverts"]]
+        # the ratio of the two runs of each round as well: the same round's runs are minutes
+        # apart at most, so a slow drift of the shared machine's load cancels in it
+        per_round = sorted(p["cpu_s"] / o["cpu_s"]
+                           for p, o in zip(results[fastest], results[ours_ref]))
         text = (f"**In short.** One top, {args.duration:g} s: ours (`sphere`, the default) takes "
                 f"{1e3 * ref_cpu:.0f} ms of CPU, the fastest peer ({ENGINE_NAME[fastest[0]]} "
                 f"`{fastest[1]}`) {1e3 * median_cpu(fastest):.0f} ms, "
-                f"{median_cpu(fastest) / ref_cpu:.1f}× ours")
+                f"{median_cpu(fastest) / ref_cpu:.1f}× ours (the ratio within each round: median "
+                f"{statistics.median(per_round):.1f}×, {per_round[0]:.1f}–{per_round[-1]:.1f}× "
+                f"over the {len(per_round)} rounds)")
         if fastest_inverting:
             f2 = min(fastest_inverting, key=median_cpu)
             text += (f"; the fastest peer that inverts the top ({ENGINE_NAME[f2[0]]} `{f2[1]}`) "
