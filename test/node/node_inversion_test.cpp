@@ -48,23 +48,67 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   const double dt = reference.options().time_step;
   ASSERT_EQ(dt, 1e-4);
 
-  // connected: a subscriber counts as connected before the node has its link, so step (paused)
-  // until all three streams flow
-  ASSERT_TRUE(WaitFor(
-      [&] {
-        if (states.Count() > 0 && contacts.Count() > 0 && tf.Count() > 0) return true;
-        StepSimulation step;
-        step.request.steps = kContactsPeriod;
-        Call(nh, kNode + "step", step);
-        return WaitFor([&] { return contacts.Count() > 0 && tf.Count() > 0; }, 0.2);
-      },
-      20.0));
+  // One persistent connection per service for every call: no socket is opened or closed in
+  // either process while the streams connect and run (see below).
+  ros::ServiceClient step_client =
+      nh.serviceClient<StepSimulation>(kNode + "step", /*persistent=*/true);
+  ros::ServiceClient unpause_client =
+      nh.serviceClient<std_srvs::Empty>(kNode + "unpause_physics", /*persistent=*/true);
+  ASSERT_TRUE(step_client.waitForExistence(ros::Duration(20.0)));
+  ASSERT_TRUE(unpause_client.waitForExistence(ros::Duration(20.0)));
+
+  // Live streams before the run. A subscriber counts as connected before the node has its link,
+  // and a link that drops while it forms is retried by roscpp only after 0.1 s: the whole run
+  // (16 000 steps, 20 ms on a fast machine) can fall into that gap, the node then publishing
+  // ~state to nobody (seen once in CI). So step (paused) 10 steps at a time until one round's
+  // samples all arrive: its 10 states, consecutive, and its ~contacts and /tf sample. Every
+  // link delivers in order, so nothing older is in flight then; the recorders start empty.
+  auto step_of = [&](double sim_time) { return std::llround(sim_time / dt); };
+  bool live = false;
+  std::string last_round;
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (!live && ros::WallTime::now() < give_up) {
+    states.Clear();
+    contacts.Clear();
+    tf.Clear();
+    StepSimulation step;
+    step.request.steps = kContactsPeriod;
+    ASSERT_TRUE(step_client.call(step) && step.response.success) << step.response.status_message;
+    const std::int64_t end = step_of(step.response.sim_time);
+    const bool arrived =
+        states.WaitForMessage([&](const SimulationState& m) { return step_of(m.sim_time) == end; },
+                              0.5) &&
+        contacts.WaitForMessage(
+            [&](const ContactInfoArray& m) { return step_of(m.sim_time) == end; }, 0.5) &&
+        tf.WaitForMessage(
+            [&](const tf2_msgs::TFMessage& m) {
+              return step_of(m.transforms[0].header.stamp.toSec()) == end;
+            },
+            0.5);
+    const std::vector<SimulationState> round = states.Messages();
+    live = arrived && round.size() >= static_cast<std::size_t>(kContactsPeriod);
+    for (std::int64_t i = 0; live && i < kContactsPeriod; ++i) {
+      live = step_of(round[round.size() - kContactsPeriod + i].sim_time) ==
+             end - kContactsPeriod + 1 + i;
+    }
+    last_round = "step " + std::to_string(end) + ": " + std::to_string(round.size()) +
+                 " states, " + std::to_string(contacts.Count()) + " ~contacts and " +
+                 std::to_string(tf.Count()) + " /tf samples";
+  }
+  ASSERT_TRUE(live) << "the streams did not all deliver one round of 10 steps in 30 s; last "
+                    << last_round;
+  states.Clear();
+  contacts.Clear();
+  tf.Clear();
 
   // as fast as possible until the node pauses itself at ~duration
-  Call<std_srvs::Empty>(nh, kNode + "unpause_physics");
+  std_srvs::Empty unpause;
+  ASSERT_TRUE(unpause_client.call(unpause));
   ASSERT_TRUE(states.WaitForMessage(
       [&](const SimulationState& m) { return m.sim_time >= kDuration - 0.5 * dt; }, 45.0))
-      << "the node did not reach t = " << kDuration << " s";
+      << "the node did not reach t = " << kDuration << " s, or ~state lost its last message: "
+      << states.Count() << " states received, the last at t = "
+      << (states.Count() > 0 ? states.Messages().back().sim_time : -1.0) << " s";
   const std::vector<SimulationState> received = states.Messages();
   const std::int64_t total_steps = std::llround(received.back().sim_time / dt);
   // the last ~contacts and /tf of the run (at the last multiple of 10 steps) arrive too
@@ -83,7 +127,6 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   // Nothing dropped: roscpp numbers the messages of ~state (header.seq), and the sim times step
   // on by the advertised period (~state every step; the samples of ~contacts and /tf, several per
   // message, every 10 steps).
-  auto step_of = [&](double sim_time) { return std::llround(sim_time / dt); };
   for (std::size_t i = 1; i < received.size(); ++i) {
     ASSERT_EQ(received[i].header.seq, received[i - 1].header.seq + 1) << "gap at " << i;
     ASSERT_EQ(step_of(received[i].sim_time), step_of(received[i - 1].sim_time) + 1) << i;
