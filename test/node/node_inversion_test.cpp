@@ -58,9 +58,10 @@ TEST(NodeInversion, InvertsExactlyLikeTheHeadlessSimulatorWithoutDroppingMessage
   ASSERT_TRUE(unpause_client.waitForExistence(ros::Duration(20.0)));
 
   // Live streams before the run. A subscriber counts as connected before the node has its link,
-  // and a link that drops while it forms is retried by roscpp only after 0.1 s: the whole run
-  // (16 000 steps, 20 ms on a fast machine) can fall into that gap, the node then publishing
-  // ~state to nobody (seen once in CI). So step (paused) 10 steps at a time until one round's
+  // and roscpp retries a dropped link only after 0.1 s: the whole run (16 000 steps, 20 ms when
+  // ~state has no subscriber) can fall into that gap. Seen once in CI: the node's publishing cost
+  // per step was that of a run without a ~state subscriber, and no state of the run arrived,
+  // after an earlier state had. So step (paused) 10 steps at a time until one round's
   // samples all arrive: its 10 states, consecutive, and its ~contacts and /tf sample. Every
   // link delivers in order, so nothing older is in flight then; the recorders start empty.
   auto step_of = [&](double sim_time) { return std::llround(sim_time / dt); };
