@@ -11,6 +11,17 @@ nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collisio
 # core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
 nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes
                          LIBRARIES nonsmooth_sim_scene_io nonsmooth_sim_core)
+# An independent reference for bodies rolling without slipping (test/reference/rolling_reference.h:
+# Eigen and Boost.Odeint only, nothing of the core), for tests that hold the integrators to it
+# (#include "reference/rolling_reference.h"); its own checks are "reference.<Suite>.<Test>".
+find_package(Boost 1.65 REQUIRED)  # header-only: odeint
+add_library(nonsmooth_sim_rolling_reference STATIC EXCLUDE_FROM_ALL
+  ${PROJECT_SOURCE_DIR}/test/reference/rolling_bodies.cpp
+  ${PROJECT_SOURCE_DIR}/test/reference/rolling_reference.cpp
+  ${PROJECT_SOURCE_DIR}/test/reference/rolling_lagrange.cpp)
+target_include_directories(nonsmooth_sim_rolling_reference PUBLIC ${PROJECT_SOURCE_DIR}/test)
+target_link_libraries(nonsmooth_sim_rolling_reference PUBLIC Eigen3::Eigen Boost::headers)
+nonsmooth_sim_add_gtests(DIR test/reference PREFIX reference LIBRARIES nonsmooth_sim_rolling_reference)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:
