@@ -1,5 +1,5 @@
-// Moreau midpoint time-stepping (13)-(18), see simulator.h: the step and the setters. Contact
-// generation and islands are in simulator_contacts.cpp, the contact solve in simulator_solve.cpp.
+// Moreau midpoint time-stepping (13)-(18), see simulator.h: the step as an orchestration of the
+// stages of core/step/, and the setters. The world's changes are in simulator_world.cpp.
 #include "nonsmooth_sim/core/simulator.h"
 
 #include <algorithm>
@@ -9,14 +9,10 @@
 #include <stdexcept>
 
 #include "nonsmooth_sim/core/all_finite.h"
+#include "nonsmooth_sim/core/step/moreau_kinematics.h"
 
 namespace nonsmooth_sim {
 namespace {
-
-constexpr double kMinTimeStep = 1e-7;  // [s]
-constexpr double kMaxTimeStep = 1e-2;  // [s]
-// The implicit-midpoint passes stop once ω_E changes by less than this relative amount even when
-// the solver tolerance is tighter: below it the change is round-off.
 
 std::vector<BodyState> Normalized(std::vector<BodyState> state) {
   for (BodyState& s : state) s.orientation.normalize();
@@ -32,102 +28,31 @@ double BodyEnergy(const RigidBody& body, const Eigen::Vector3d& gravity,
          body.mass * gravity.dot(position);
 }
 
-// What (13) and the free velocities produced from one body's q_B, u_B.
-bool MidpointIsFinite(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
-                      const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
-  return AllFinite(position) && AllFinite(orientation.coeffs()) && AllFinite(linear) &&
-         AllFinite(angular);
-}
-
 }  // namespace
 
-void ValidateSimulatorOptions(const SimulatorOptions& options) {
-  if (!(options.time_step >= kMinTimeStep && options.time_step <= kMaxTimeStep)) {
-    std::ostringstream s;
-    s << "SimulatorOptions.time_step = " << options.time_step << ": must be in [" << kMinTimeStep
-      << ", " << kMaxTimeStep << "] s";
-    throw std::invalid_argument(s.str());
-  }
-  // the tighter cap of a simulation first, so that the message names it
-  if (options.solver.max_iterations > kMaxSimulatorIterations) {
-    throw std::invalid_argument("SimulatorOptions.solver.max_iterations: must be >= 1 and <= " +
-                                std::to_string(kMaxSimulatorIterations) +
-                                " in a simulation (the cap multiplies the work of every step), "
-                                "got " + std::to_string(options.solver.max_iterations));
-  }
-  ValidateSolverOptions(options.solver);
-  if (GyroscopicSchemeName(options.gyroscopic) == "unknown") {
-    throw std::invalid_argument(
-        "SimulatorOptions.gyroscopic must be kExplicit, kImplicitMidpoint or kAuto");
-  }
-}
-
-std::string ContactName(const Scene& scene, const ContactState& contact) {
-  const int first = std::min(contact.collider_a, contact.collider_b);
-  const int second = std::max(contact.collider_a, contact.collider_b);
-  return scene.colliders[static_cast<std::size_t>(first)].name + "/" +
-         scene.colliders[static_cast<std::size_t>(second)].name;
-}
-
-Simulator::Simulator(Scene scene, SimulatorOptions options)
-    : scene_(std::move(scene)), options_(options) {
-  ValidateScene(scene_);
+Simulator::Simulator(Scene scene, SimulatorOptions options) : options_(options) {
+  model_.scene = std::move(scene);
+  ValidateScene(model_.scene);
   ValidateSimulatorOptions(options_);
-  RequireFiniteEnergy(scene_, scene_.initial_state);
-  state_ = Normalized(scene_.initial_state);
+  RequireFiniteEnergy(model_.scene, model_.scene.initial_state);
+  state_ = Normalized(model_.scene.initial_state);
   Initialize();
 }
 
 void Simulator::Initialize() {
   BuildCaches();
-  memory_.clear();
+  data_.memory.clear();
   contacts_.clear();
-  wrench_.assign(scene_.bodies.size(), Wrench{});
-  any_wrench_ = false;
+  model_.wrench.assign(model_.scene.bodies.size(), BodyWrench{});
+  model_.any_wrench = false;
 }
 
 void Simulator::BuildCaches() {
-  const std::size_t bodies = scene_.bodies.size();
-  inertia_.clear();
-  for (const RigidBody& body : scene_.bodies) {
-    inertia_.push_back(MakeBodyInertia(body.mass, body.inertia));
-  }
-  body_step_.assign(bodies, BodyStep{});
-  union_find_.assign(bodies, 0);
-  planes_.clear();
-  int first_body = kWorld;
-  needs_sweep_ = false;
-  for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
-    const Collider& c = scene_.colliders[i];
-    if (c.shape.type == ShapeType::kPlane) {
-      planes_.push_back(static_cast<int>(i));
-      continue;
-    }
-    if (c.body == kWorld || (first_body != kWorld && c.body != first_body)) needs_sweep_ = true;
-    if (first_body == kWorld) first_body = c.body;
-  }
-  // static colliders have their pose once and for all
-  collider_pose_.assign(scene_.colliders.size(), Eigen::Isometry3d::Identity());
-  collider_rotated_.resize(scene_.colliders.size());
-  bounding_radius_.resize(scene_.colliders.size());
-  for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
-    collider_rotated_[i] = !scene_.colliders[i].pose.linear().isIdentity(0.0);
-    // padded by the hysteresis of the index set (12): the broad phase must pass a pair whose
-    // contact was closed and now has a round-off-level positive gap (a sphere's bounding sphere
-    // is the sphere itself: unpadded, the pair was dropped before the narrow phase saw it)
-    bounding_radius_[i] = BoundingRadius(scene_.colliders[i].shape) + kContactHysteresis;
-  }
-  for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
-    if (scene_.colliders[i].body == kWorld) collider_pose_[i] = scene_.colliders[i].pose;
-  }
-  spheres_.clear();
-  spheres_.reserve(scene_.colliders.size());
-  pairs_.reserve(2 * scene_.colliders.size());
-  merged_pairs_.reserve(2 * scene_.colliders.size());
-  closed_.reserve(2 * scene_.colliders.size());
-  closed_count_ = 0;
-  contacts_.reserve(2 * scene_.colliders.size());
-  memory_.reserve(4 * scene_.colliders.size());
+  model_.BuildCaches();
+  data_.Resize(model_);
+  contact_pipeline_.Resize(model_);
+  islands_.Resize(model_.scene.bodies.size());
+  contacts_.reserve(2 * model_.scene.colliders.size());
 }
 
 StepStatistics Simulator::Step() {
@@ -155,43 +80,37 @@ void Simulator::Step(StepStatistics* out) {
   stats.state_finite = !diverged_;
   if (diverged_) return;
 
+  // (13) q_M and the free velocities of (14)
   bool finite = true;
-  ComputeMidpoints(&stats, &finite);
+  ComputeMidpoints(model_, options_, state_, &data_, &stats, &finite);
   if (!finite) {
     diverged_ = true;
     stats.state_finite = false;
     return;
   }
-  // (12) the index set at q_M, and the islands of bodies it links
-  FindContacts(&stats);
-  BuildIslands(&stats);
-  // every closed contact belongs to an island, whose solve writes its flags
-  if (stats.solver.friction_projected.size() != closed_count_) {
-    stats.solver.friction_projected.resize(closed_count_);
-    stats.solver.normal_projected.resize(closed_count_);
+  // (12) the index set at q_M with W, and the islands of bodies it links
+  contact_pipeline_.FindContacts(model_, state_, &data_, &stats);
+  islands_.Build(data_.closed.data(), data_.closed_count);
+  stats.islands = static_cast<int>(islands_.islands().size());
+  // (16), (17) per island; every closed contact belongs to an island, whose solve writes its flags
+  if (stats.solver.friction_projected.size() != data_.closed_count) {
+    stats.solver.friction_projected.resize(data_.closed_count);
+    stats.solver.normal_projected.resize(data_.closed_count);
   }
-  for (const Island& island : islands_) {
-    finite = finite && SolveIsland(island, &stats);
+  for (std::size_t k = 0; k < islands_.islands().size(); ++k) {
+    finite = finite && island_problem_.Solve(model_, options_, state_, islands_, k, &data_, &stats);
   }
-  if (implicit_step_) {
-    // bodies without contact: the implicit midpoint rule alone, torque-free
-    for (std::size_t b = 0; b < state_.size(); ++b) {
-      BodyStep& w = body_step_[b];
-      if (w.island >= 0) continue;
-      // torque-free unless an external torque acts (its impulse in K, ComputeMidpoints)
-      const Eigen::Vector3d impulse =
-          w.external ? w.angular_external : Eigen::Vector3d(Eigen::Vector3d::Zero());
-      w.angular_end = ImplicitMidpointEuler(inertia_[b], state_[b].angular_velocity, impulse,
-                                            options_.time_step, w.angular_free);
-    }
-  }
-  finite = finite && ComputeEndState();
+  // bodies without contact: the implicit midpoint rule alone
+  if (data_.implicit) SolveFreeBodiesImplicit(model_, options_, state_, islands_, &data_);
+  // (18) u_E, (15) q_E
+  finite = finite && ComputeEndState(model_, options_, &data_);
   // the end state's energy, summed as Energy() sums it: a state whose energy overflows is as lost
   // as one with an inf (ComputeEndState checks |v|² and |ω|², not m, Θ and g·r_S)
+  const Scene& scene = model_.scene;
   double energy = 0.0;
   for (std::size_t b = 0; finite && b < state_.size(); ++b) {
-    const BodyStep& w = body_step_[b];
-    energy += BodyEnergy(scene_.bodies[b], scene_.gravity, w.position_end, w.linear_end,
+    const BodyStep& w = data_.body[b];
+    energy += BodyEnergy(scene.bodies[b], scene.gravity, w.position_end, w.linear_end,
                          w.angular_end);
   }
   if (!finite || !std::isfinite(energy)) {
@@ -203,7 +122,7 @@ void Simulator::Step(StepStatistics* out) {
   }
   for (std::size_t b = 0; b < state_.size(); ++b) {
     BodyState& s = state_[b];
-    const BodyStep& w = body_step_[b];
+    const BodyStep& w = data_.body[b];
     s.linear_velocity = w.linear_end;
     s.angular_velocity = w.angular_end;
     s.position = w.position_end;
@@ -211,42 +130,42 @@ void Simulator::Step(StepStatistics* out) {
   }
   time_ += options_.time_step;
   if (options_.gap_correction) {
-    gap_moved_ = false;
-    CorrectGaps(&stats);
-    // CorrectGaps runs after the checks above: a correction that made anything non-finite (a body
-    // set far beyond every scale, e.g. 1e300 m deep: NaN rotations, lifts whose norm or energy
-    // overflows) is undone, back to the end state checked above, which body_step_ still holds
-    // (CorrectGaps moves state_ only, so this costs no copy and no allocation); checked only if
-    // it moved a body
+    // the position projection after (15)
+    const bool moved = position_projection_.CorrectGaps(model_, &data_, &state_, &stats);
+    // it runs after the checks above: a correction that made anything non-finite (a body set far
+    // beyond every scale, e.g. 1e300 m deep: NaN rotations, lifts whose norm or energy overflows)
+    // is undone, back to the end state checked above, which data_.body still holds (CorrectGaps
+    // moves state_ only, so this costs no copy and no allocation); checked only if it moved a
+    // body
     bool corrected_finite =
-        !gap_moved_ ||
+        !moved ||
         (std::isfinite(stats.gap_correction) && std::isfinite(stats.gap_correction_energy));
     const double end_energy = energy;
     energy = 0.0;
-    for (std::size_t b = 0; gap_moved_ && corrected_finite && b < state_.size(); ++b) {
+    for (std::size_t b = 0; moved && corrected_finite && b < state_.size(); ++b) {
       const BodyState& s = state_[b];
       corrected_finite = AllFinite(s.position) && AllFinite(s.orientation.coeffs());
-      energy += BodyEnergy(scene_.bodies[b], scene_.gravity, s.position, s.linear_velocity,
+      energy += BodyEnergy(scene.bodies[b], scene.gravity, s.position, s.linear_velocity,
                            s.angular_velocity);
     }
     if (!corrected_finite || !std::isfinite(energy)) {
       for (std::size_t b = 0; b < state_.size(); ++b) {
-        state_[b].position = body_step_[b].position_end;
-        state_[b].orientation = body_step_[b].orientation_end;
+        state_[b].position = data_.body[b].position_end;
+        state_[b].orientation = data_.body[b].orientation_end;
       }
       stats.gap_correction = 0.0;
       stats.gap_correction_energy = 0.0;
       stats.gap_correction_undone = true;
       energy = end_energy;
-    } else if (!gap_moved_) {
+    } else if (!moved) {
       energy = end_energy;
     }
   }
   stats.energy = energy;
   // the report: γ_E = W(q_M)ᵀu_E, the velocity the contact law constrained
-  contacts_.resize(closed_count_);
-  for (std::size_t i = 0; i < closed_count_; ++i) {
-    ClosedContact& c = closed_[i];
+  contacts_.resize(data_.closed_count);
+  for (std::size_t i = 0; i < data_.closed_count; ++i) {
+    ClosedContact& c = data_.closed[i];
     c.report.relative_velocity.setZero();
     for (const ContactSide& side : c.jacobian.side) {
       if (side.body < 0) continue;
@@ -256,64 +175,7 @@ void Simulator::Step(StepStatistics* out) {
     }
     contacts_[i] = c.report;
   }
-  ++step_count_;
-}
-
-void Simulator::ComputeMidpoints(StepStatistics* stats, bool* finite) {
-  const double dt = options_.time_step;
-  const double half_dt = 0.5 * dt;
-  // (13) q_M = q_B + Δt/2 F(q_B) u_B, and u_B + M⁻¹ h(q_M, u_B) Δt (14)
-  double max_omega_sq = 0.0;  // max |ω|²: one square root per step, the same rounded maximum
-  for (std::size_t b = 0; b < state_.size(); ++b) {
-    const BodyState& s = state_[b];
-    const BodyInertia& body = inertia_[b];
-    BodyStep& w = body_step_[b];
-    w.position_mid = s.position + half_dt * s.linear_velocity;
-    w.orientation_mid = AdvanceOrientation(s.orientation, s.angular_velocity, half_dt).normalized();
-    w.rotation_mid = w.orientation_mid.toRotationMatrix();
-    w.linear_free = s.linear_velocity + dt * scene_.gravity;
-    w.gyroscopic_impulse = dt * GyroscopicTorque(body, s.angular_velocity);
-    w.angular_free = s.angular_velocity + InverseInertiaTimes(body, w.gyroscopic_impulse);
-    // the external wrench enters h(q_M, u_B) with gravity: v += Δt F/m, ω += Θ⁻¹ Δt A(p_M)ᵀτ
-    // (A(p_B) would be first order in the torque's turning); skipped without one, so that a world
-    // without wrenches steps exactly as before
-    w.external = any_wrench_ && wrench_[b].set;
-    if (w.external) {
-      w.linear_free += (dt * body.inverse_mass) * wrench_[b].force;
-      w.angular_external = dt * (w.rotation_mid.transpose() * wrench_[b].torque);
-      w.angular_free += InverseInertiaTimes(body, w.angular_external);
-    }
-    w.angular_end = w.angular_free;
-    w.linear_contact.setZero();
-    w.angular_contact.setZero();
-    w.island = -1;
-    max_omega_sq = std::max(max_omega_sq, s.angular_velocity.squaredNorm());
-    *finite = *finite &&
-              MidpointIsFinite(w.position_mid, w.orientation_mid, w.linear_free, w.angular_free);
-  }
-  stats->max_dt_omega = std::max(stats->max_dt_omega, dt * std::sqrt(max_omega_sq));
-  const bool beyond = stats->max_dt_omega > kExplicitGyroscopicMaxDtOmega;
-  implicit_step_ = options_.gyroscopic == GyroscopicScheme::kImplicitMidpoint ||
-                   (options_.gyroscopic == GyroscopicScheme::kAuto && beyond);
-  stats->explicit_gyroscopic_unsafe = !implicit_step_ && beyond;
-}
-
-bool Simulator::ComputeEndState() {
-  const double half_dt = 0.5 * options_.time_step;
-  bool finite = true;
-  // (18) u_E, then (15) q_E = q_M + Δt/2 F(q_M) u_E with the quaternion renormalised
-  for (std::size_t b = 0; b < state_.size(); ++b) {
-    BodyStep& w = body_step_[b];
-    w.linear_end = w.linear_free + inertia_[b].inverse_mass * w.linear_contact;
-    w.position_end = w.position_mid + half_dt * w.linear_end;
-    w.orientation_end = AdvanceOrientation(w.orientation_mid, w.angular_end, half_dt).normalized();
-    w.rotation_end = w.orientation_end.toRotationMatrix();
-    // the squared norms too: a state whose energy overflows is as lost as one with an inf
-    finite = finite && std::isfinite(w.linear_end.squaredNorm()) &&
-             std::isfinite(w.angular_end.squaredNorm()) && AllFinite(w.position_end) &&
-             AllFinite(w.orientation_end.coeffs());
-  }
-  return finite;
+  ++data_.step;
 }
 
 const ContactState* Simulator::FindContact(int collider) const {
@@ -324,11 +186,11 @@ const ContactState* Simulator::FindContact(int collider) const {
 }
 
 void Simulator::SetState(const std::vector<BodyState>& state) {
-  ValidateState(scene_, state);
-  RequireFiniteEnergy(scene_, state);
+  ValidateState(model_.scene, state);
+  RequireFiniteEnergy(model_.scene, state);
   state_ = Normalized(state);
   diverged_ = false;
-  memory_.clear();
+  data_.memory.clear();
   contacts_.clear();
 }
 
@@ -386,31 +248,22 @@ void Simulator::SetOptions(const SimulatorOptions& options) {
   ValidateSimulatorOptions(options);
   // percussions scale with Δt: a warm start from another step size would be off by the ratio
   if (options.time_step != options_.time_step) {
-    for (auto& [key, memory] : memory_) memory.DropWarmStart();
+    for (auto& [key, memory] : data_.memory) memory.DropWarmStart();
   }
   options_ = options;
 }
 
-ContactLaw Simulator::PairLaw(int first, int second) const {
-  ContactLaw law = CombineLaws(scene_.colliders[static_cast<std::size_t>(first)],
-                               scene_.colliders[static_cast<std::size_t>(second)]);
-  for (const auto& [pair, set] : pair_sets_) {  // usually empty
-    if (pair.first == first && pair.second == second) law.friction_set = set;
-  }
-  return law;
-}
-
 FrictionSet Simulator::FrictionSetOf(const std::string& name) const {
-  const int collider = FindCollider(scene_, name);
-  if (collider >= 0) return scene_.colliders[static_cast<std::size_t>(collider)].law.friction_set;
+  const int collider = FindCollider(model_.scene, name);
+  if (collider >= 0) return model_.scene.colliders[static_cast<std::size_t>(collider)].law.friction_set;
   const std::size_t slash = name.find('/');
-  const int first = slash == std::string::npos ? -1 : FindCollider(scene_, name.substr(0, slash));
-  const int second = slash == std::string::npos ? -1 : FindCollider(scene_, name.substr(slash + 1));
+  const int first = slash == std::string::npos ? -1 : FindCollider(model_.scene, name.substr(0, slash));
+  const int second = slash == std::string::npos ? -1 : FindCollider(model_.scene, name.substr(slash + 1));
   if (first < 0 || second < 0 || first == second) {
     throw std::invalid_argument("unknown contact \"" + name +
                                 "\": expected a collider name or \"<collider>/<collider>\"");
   }
-  return PairLaw(std::min(first, second), std::max(first, second)).friction_set;
+  return model_.PairLaw(std::min(first, second), std::max(first, second)).friction_set;
 }
 
 void Simulator::SetFrictionSet(FrictionSet set, const std::string& name) {
@@ -418,44 +271,44 @@ void Simulator::SetFrictionSet(FrictionSet set, const std::string& name) {
     throw std::invalid_argument("friction set must be one of " + FrictionSetNameList());
   }
   if (name.empty()) {
-    for (Collider& c : scene_.colliders) c.law.friction_set = set;
-    pair_sets_.clear();
-  } else if (const int collider = FindCollider(scene_, name); collider >= 0) {
-    scene_.colliders[static_cast<std::size_t>(collider)].law.friction_set = set;
-    pair_sets_.erase(std::remove_if(pair_sets_.begin(), pair_sets_.end(),
+    for (Collider& c : model_.scene.colliders) c.law.friction_set = set;
+    model_.pair_sets.clear();
+  } else if (const int collider = FindCollider(model_.scene, name); collider >= 0) {
+    model_.scene.colliders[static_cast<std::size_t>(collider)].law.friction_set = set;
+    model_.pair_sets.erase(std::remove_if(model_.pair_sets.begin(), model_.pair_sets.end(),
                                     [collider](const auto& entry) {
                                       return entry.first.first == collider ||
                                              entry.first.second == collider;
                                     }),
-                     pair_sets_.end());
+                     model_.pair_sets.end());
   } else {
     FrictionSetOf(name);  // throws for an unknown name
     const std::size_t slash = name.find('/');
-    const int a = FindCollider(scene_, name.substr(0, slash));
-    const int b = FindCollider(scene_, name.substr(slash + 1));
+    const int a = FindCollider(model_.scene, name.substr(0, slash));
+    const int b = FindCollider(model_.scene, name.substr(slash + 1));
     const std::pair<int, int> pair(std::min(a, b), std::max(a, b));
     bool found = false;
-    for (auto& [p, s] : pair_sets_) {
+    for (auto& [p, s] : model_.pair_sets) {
       if (p == pair) {
         s = set;
         found = true;
       }
     }
-    if (!found) pair_sets_.emplace_back(pair, set);
+    if (!found) model_.pair_sets.emplace_back(pair, set);
   }
   // the warm start of a contact whose set changed would start outside its new set
-  for (auto& [key, memory] : memory_) memory.DropWarmStart();
+  for (auto& [key, memory] : data_.memory) memory.DropWarmStart();
 }
 
 void Simulator::SetContactLaw(int collider, const ContactLaw& law) {
-  const int count = static_cast<int>(scene_.colliders.size());
+  const int count = static_cast<int>(model_.scene.colliders.size());
   if (collider < 0 || collider >= count) {
     throw std::out_of_range("collider index " + std::to_string(collider) + " not in [0, " +
                             std::to_string(count) + ")");
   }
-  ValidateLaw("law of collider " + scene_.colliders[static_cast<std::size_t>(collider)].name, law);
-  scene_.colliders[static_cast<std::size_t>(collider)].law = law;
-  for (auto& [key, memory] : memory_) memory.DropWarmStart();
+  ValidateLaw("law of collider " + model_.scene.colliders[static_cast<std::size_t>(collider)].name, law);
+  model_.scene.colliders[static_cast<std::size_t>(collider)].law = law;
+  for (auto& [key, memory] : data_.memory) memory.DropWarmStart();
 }
 
 }  // namespace nonsmooth_sim

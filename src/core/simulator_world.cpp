@@ -65,7 +65,7 @@ std::string IndexRange(int index, std::size_t count) {
 }  // namespace
 
 int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state) {
-  const int first = static_cast<int>(scene_.bodies.size());
+  const int first = static_cast<int>(model_.scene.bodies.size());
   if (state.size() != model.bodies.size()) {
     throw std::invalid_argument("AddBodies: " + std::to_string(state.size()) +
                                 " start states for " + std::to_string(model.bodies.size()) +
@@ -85,7 +85,7 @@ int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state
   // body names (where given) address the models: unique across the world
   {
     std::unordered_set<std::string> names;
-    for (const RigidBody& body : scene_.bodies) {
+    for (const RigidBody& body : model_.scene.bodies) {
       if (!body.name.empty()) names.insert(body.name);
     }
     for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -97,7 +97,7 @@ int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state
     }
   }
   // the merged scene: appended, validated like the constructor's before anything changes
-  Scene merged = scene_;
+  Scene merged = model_.scene;
   Scene appended = model;
   appended.initial_state = state;
   AppendScene(appended, &merged);
@@ -108,21 +108,21 @@ int Simulator::AddBodies(const Scene& model, const std::vector<BodyState>& state
     merged_state.back().orientation.normalize();
   }
   RequireFiniteEnergy(merged, merged_state);
-  std::vector<Wrench> merged_wrench = wrench_;
+  std::vector<BodyWrench> merged_wrench = model_.wrench;
   merged_wrench.resize(merged.bodies.size());
 
   // commit: the memory, friction sets per pair, contact report and wrenches keep their indices
-  scene_ = std::move(merged);
+  model_.scene = std::move(merged);
   state_ = std::move(merged_state);
-  wrench_ = std::move(merged_wrench);
+  model_.wrench = std::move(merged_wrench);
   BuildCaches();
-  closed_count_ = 0;
+  data_.closed_count = 0;
   return first;
 }
 
 void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<int>& colliders) {
-  const std::size_t body_count = scene_.bodies.size();
-  const std::size_t collider_count = scene_.colliders.size();
+  const std::size_t body_count = model_.scene.bodies.size();
+  const std::size_t collider_count = model_.scene.colliders.size();
   std::vector<char> remove_body(body_count, 0);
   for (int b : bodies) {
     if (b < 0 || static_cast<std::size_t>(b) >= body_count) {
@@ -138,7 +138,7 @@ void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<i
     if (i < 0 || static_cast<std::size_t>(i) >= collider_count) {
       throw std::out_of_range("RemoveBodies: collider index " + IndexRange(i, collider_count));
     }
-    const Collider& c = scene_.colliders[static_cast<std::size_t>(i)];
+    const Collider& c = model_.scene.colliders[static_cast<std::size_t>(i)];
     if (c.body != kWorld) {
       throw std::invalid_argument("RemoveBodies: collider " + std::to_string(i) + " (" + c.name +
                                   ") is on a body, not static: remove its body");
@@ -153,25 +153,25 @@ void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<i
   // old → new indices, increasing (-1: removed)
   std::vector<int> body_map;
   std::vector<int> collider_map;
-  Scene rest = scene_;
+  Scene rest = model_.scene;
   RemoveFromScene(remove_body, remove_collider, &rest, &body_map, &collider_map);
   std::vector<BodyState> rest_state;
-  std::vector<Wrench> rest_wrench;
+  std::vector<BodyWrench> rest_wrench;
   for (std::size_t b = 0; b < body_count; ++b) {
     if (remove_body[b]) continue;
     rest_state.push_back(state_[b]);
-    rest_wrench.push_back(wrench_[b]);
+    rest_wrench.push_back(model_.wrench[b]);
   }
   // warm starts and tangent frames by (pair, feature), re-keyed
-  std::unordered_map<std::uint64_t, ContactMemory> rest_memory;
-  rest_memory.reserve(memory_.size());
-  for (const auto& [key, memory] : memory_) {
+  ContactMemoryMap rest_memory;
+  rest_memory.reserve(data_.memory.size());
+  for (const auto& [key, memory] : data_.memory) {
     std::uint64_t new_key = 0;
     if (RekeyContact(key, collider_map, &new_key)) rest_memory.emplace(new_key, memory);
   }
   // friction sets per pair (first < second stays ordered: the map is increasing)
   std::vector<std::pair<std::pair<int, int>, FrictionSet>> rest_sets;
-  for (const auto& [pair, set] : pair_sets_) {
+  for (const auto& [pair, set] : model_.pair_sets) {
     const int a = collider_map[static_cast<std::size_t>(pair.first)];
     const int b = collider_map[static_cast<std::size_t>(pair.second)];
     if (a >= 0 && b >= 0) rest_sets.emplace_back(std::make_pair(a, b), set);
@@ -190,18 +190,18 @@ void Simulator::RemoveBodies(const std::vector<int>& bodies, const std::vector<i
     kept.body_b = MapBody(contact.body_b, body_map);
   }
   bool any_wrench = false;
-  for (const Wrench& w : rest_wrench) any_wrench = any_wrench || w.set;
+  for (const BodyWrench& w : rest_wrench) any_wrench = any_wrench || w.set;
 
   // commit
-  scene_ = std::move(rest);
+  model_.scene = std::move(rest);
   state_ = std::move(rest_state);
-  wrench_ = std::move(rest_wrench);
-  any_wrench_ = any_wrench;
-  memory_ = std::move(rest_memory);
-  pair_sets_ = std::move(rest_sets);
+  model_.wrench = std::move(rest_wrench);
+  model_.any_wrench = any_wrench;
+  data_.memory = std::move(rest_memory);
+  model_.pair_sets = std::move(rest_sets);
   contacts_ = std::move(rest_contacts);
   BuildCaches();
-  closed_count_ = 0;  // closed_ pointed into the old memory; rewritten by the next step
+  data_.closed_count = 0;  // closed_ pointed into the old memory; rewritten by the next step
 }
 
 void Simulator::SetBodyStates(const std::vector<int>& bodies,
@@ -210,12 +210,12 @@ void Simulator::SetBodyStates(const std::vector<int>& bodies,
     throw std::invalid_argument("SetBodyStates: " + std::to_string(states.size()) +
                                 " states for " + std::to_string(bodies.size()) + " bodies");
   }
-  std::vector<char> moved(scene_.bodies.size(), 0);
+  std::vector<char> moved(model_.scene.bodies.size(), 0);
   std::vector<BodyState> next = state_;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const int b = bodies[i];
-    if (b < 0 || static_cast<std::size_t>(b) >= scene_.bodies.size()) {
-      throw std::out_of_range("SetBodyStates: body index " + IndexRange(b, scene_.bodies.size()));
+    if (b < 0 || static_cast<std::size_t>(b) >= model_.scene.bodies.size()) {
+      throw std::out_of_range("SetBodyStates: body index " + IndexRange(b, model_.scene.bodies.size()));
     }
     if (moved[static_cast<std::size_t>(b)]) {
       throw std::invalid_argument("SetBodyStates: body index " + std::to_string(b) +
@@ -224,17 +224,17 @@ void Simulator::SetBodyStates(const std::vector<int>& bodies,
     moved[static_cast<std::size_t>(b)] = 1;
     next[static_cast<std::size_t>(b)] = states[i];
   }
-  ValidateState(scene_, next);
-  RequireFiniteEnergy(scene_, next);  // the bodies not set have a finite energy: they stepped to it
+  ValidateState(model_.scene, next);
+  RequireFiniteEnergy(model_.scene, next);  // the bodies not set have a finite energy: they stepped to it
   for (int b : bodies) next[static_cast<std::size_t>(b)].orientation.normalize();
   // forget the contacts of the moved bodies only
   auto involved = [&](int collider) {
-    const int body = scene_.colliders[static_cast<std::size_t>(collider)].body;
+    const int body = model_.scene.colliders[static_cast<std::size_t>(collider)].body;
     return body != kWorld && moved[static_cast<std::size_t>(body)] != 0;
   };
-  for (auto it = memory_.begin(); it != memory_.end();) {
+  for (auto it = data_.memory.begin(); it != data_.memory.end();) {
     if (involved(ContactKeyFirst(it->first)) || involved(ContactKeySecond(it->first))) {
-      it = memory_.erase(it);
+      it = data_.memory.erase(it);
     } else {
       ++it;
     }
@@ -246,30 +246,33 @@ void Simulator::SetBodyStates(const std::vector<int>& bodies,
                   contacts_.end());
   state_ = std::move(next);
   diverged_ = false;
-  closed_count_ = 0;  // closed_ may point into the erased memory; rewritten by the next step
+  data_.closed_count = 0;  // closed_ may point into the erased memory; rewritten by the next step
 }
 
 void Simulator::SetExternalWrench(int body, const Eigen::Vector3d& force,
                                   const Eigen::Vector3d& torque) {
-  if (body < 0 || static_cast<std::size_t>(body) >= wrench_.size()) {
-    throw std::out_of_range("SetExternalWrench: body index " + IndexRange(body, wrench_.size()));
+  if (body < 0 || static_cast<std::size_t>(body) >= model_.wrench.size()) {
+    throw std::out_of_range("SetExternalWrench: body index " +
+                            IndexRange(body, model_.wrench.size()));
   }
   if (!force.allFinite() || !torque.allFinite()) {
     throw std::invalid_argument("SetExternalWrench: force and torque must be finite [N, N m]");
   }
-  Wrench& w = wrench_[static_cast<std::size_t>(body)];
+  BodyWrench& w = model_.wrench[static_cast<std::size_t>(body)];
   w.force = force;
   w.torque = torque;
   // zero is "none": the body steps exactly as without a wrench
   w.set = !(force.isZero(0.0) && torque.isZero(0.0));
-  any_wrench_ = std::any_of(wrench_.begin(), wrench_.end(), [](const Wrench& x) { return x.set; });
+  model_.any_wrench = std::any_of(model_.wrench.begin(), model_.wrench.end(),
+                                  [](const BodyWrench& x) { return x.set; });
 }
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulator::ExternalWrench(int body) const {
-  if (body < 0 || static_cast<std::size_t>(body) >= wrench_.size()) {
-    throw std::out_of_range("ExternalWrench: body index " + IndexRange(body, wrench_.size()));
+  if (body < 0 || static_cast<std::size_t>(body) >= model_.wrench.size()) {
+    throw std::out_of_range("ExternalWrench: body index " +
+                            IndexRange(body, model_.wrench.size()));
   }
-  const Wrench& w = wrench_[static_cast<std::size_t>(body)];
+  const BodyWrench& w = model_.wrench[static_cast<std::size_t>(body)];
   return {w.force, w.torque};
 }
 

@@ -68,184 +68,31 @@
 //
 // Step() allocates nothing once every problem size n it meets has been seen once (the contact
 // problems are kept per size n; Eigen resizes would reallocate otherwise).
+//
+// The step is an orchestration of stages over (Model, StepData), each in its own file pair under
+// core/step/: moreau_kinematics (13), (14), (18), (15); contact_pipeline (12) and W; islands;
+// island_problem (16), (17); position_projection (the gap correction after (15)).
 #ifndef NONSMOOTH_SIM_CORE_SIMULATOR_H_
 #define NONSMOOTH_SIM_CORE_SIMULATOR_H_
 
 #include <Eigen/Core>
-#include <array>
-#include <cstdint>
-#include <optional>
 #include <string>
-#include <unordered_map>
-#include <string_view>
 #include <utility>
 #include <vector>
 
-#include "nonsmooth_sim/core/collision/broad_phase.h"
-#include "nonsmooth_sim/core/collision/collision.h"
-#include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/contact_solver.h"
+#include "nonsmooth_sim/core/model.h"
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
 #include "nonsmooth_sim/core/scene.h"
+#include "nonsmooth_sim/core/simulator_options.h"
+#include "nonsmooth_sim/core/step/contact_pipeline.h"
+#include "nonsmooth_sim/core/step/island_problem.h"
+#include "nonsmooth_sim/core/step/islands.h"
+#include "nonsmooth_sim/core/step/position_projection.h"
+#include "nonsmooth_sim/core/step/step_data.h"
+#include "nonsmooth_sim/core/step/step_report.h"
 
 namespace nonsmooth_sim {
-
-/// How the gyroscopic term -ω × Θω enters h in (14).
-enum class GyroscopicScheme {
-  kExplicit,         ///< "explicit": the paper's h(q_M, u_B); adds ½Δt²·aᵀΘa per step
-  kImplicitMidpoint, ///< "implicit_midpoint": Euler's equations by the implicit midpoint rule,
-                     ///< a few fixed-point passes around the contact solve; conserves ½ωᵀΘω, |L|
-  kAuto,             ///< "auto": per step, kExplicit while Δt·|ω_B| ≤ kExplicitGyroscopicMaxDtOmega
-                     ///< for every body, kImplicitMidpoint for a step where a body exceeds it (a
-                     ///< run that stays below is bit-identical to kExplicit)
-};
-std::string_view GyroscopicSchemeName(GyroscopicScheme scheme);
-std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name);
-
-/// Penetration a closed contact may keep before gap_correction lifts its body [m]. Far below every
-/// geometric scale of the scenes (Tippe-Top: contact radius R = 0.5 mm, peg radius 5 mm; block
-/// and disc feet 10 mm) and far above the per-step O(Δt²) drift of a rolling contact (measured at
-/// most 1.6e-9 m per step for the top rocking at Δt = 1e-3, less at smaller Δt): a body at rest
-/// never sinks to it and a short rolling phase rarely does (the rocking top needs ~1.3 s), while a
-/// contact that keeps rolling is then held at -kGapCorrectionSlop by lifts of the size of that
-/// per-step drift (nearly every step).
-inline constexpr double kGapCorrectionSlop = 1e-6;
-
-/// Projected Gauss-Seidel sweeps of the levelling of a body on several points of one static
-/// collider (SimulatorOptions::gap_correction): at most 8 points with a diagonal-dominant
-/// Delassus matrix; 30 sweeps bring a 10 µm tilt to the slop within 1e-12 m (measured on a box
-/// on four corners and a capsule on its two ends).
-inline constexpr int kLevellingSweeps = 30;
-
-/// A contact closed in the last step stays in the index set (12) up to this positive gap [m]. A
-/// body resting on a flat face or several corners sits at g = 0 up to round-off; without it the
-/// contacts of such a face open for single steps at gaps of 1e-18 m and the body falls freely
-/// for a step (a hop of g Δt). A contact that separates has Λ = 0 whether it is in the index set
-/// or not (no adhesion; its friction bound μΛ_N is 0), so this changes nothing but the catching
-/// of a body that comes back within 1 nm of where it left: far below every scale of the scenes.
-/// The broad phase has no such margin: a sphere on a plane (its bounding sphere is the shape) keeps
-/// g ≤ 0 exactly. Widening it by the hysteresis changed the Tippe-Top's θ(t) by up to 1.2e-5 rad
-/// (a contact kept closed at a positive gap stops the gap correction's lift of the other sphere),
-/// so the margin is left to the bodies with faces and corners, where it was needed.
-inline constexpr double kContactHysteresis = 1e-9;
-
-/// Δt·|ω| up to which the explicit gyroscopic term is considered safe (StepStatistics::
-/// explicit_gyroscopic_unsafe). Measured on the Tippe-Top: runs with Δt·|ω| ≤ 0.18 never gained
-/// energy, from 0.2 they gain, from 0.4-0.5 they blow up (non-finite state); 0.1 keeps a margin.
-inline constexpr double kExplicitGyroscopicMaxDtOmega = 0.1;
-
-/// Upper bound of SolverOptions::max_iterations in a simulation, where the cap multiplies the work
-/// of every step (per island, and per gyroscopic pass with kImplicitMidpoint). It bounds a step at
-/// 1e5 iterations of each island: 4.4 ms for the Tippe-Top on one contact (Gauss-Seidel, Release,
-/// an idle core; 8-17 ms with the 2 cores shared; bounded_work_test prints it, 2026-12-02; the
-/// contacts of an island cost O(n²) per iteration). 1e5 is the cap the converged references of the
-/// trade study use (scripts/tradeoff, tolerance 1e-12, also on the slow `ellipsoid` set) and the
-/// tightest Simulator tests (dynamics_test, tippe_top_test); the default is 1000.
-/// ValidateSimulatorOptions checks it, and with it `simulate` and the node (parameters and
-/// ~set_solver_properties).
-inline constexpr int kMaxSimulatorIterations = 100000;
-
-struct SimulatorOptions {
-  double time_step = 1e-4;  ///< Δt [s], in [1e-7, 1e-2]
-  /// solver.max_iterations in [1, kMaxSimulatorIterations], solver.relaxation in
-  /// [kMinRelaxation, 2) (ValidateSolverOptions, contact_solver.h)
-  SolverOptions solver;
-  GyroscopicScheme gyroscopic = GyroscopicScheme::kExplicit;
-  /// After (15), the closed contacts (12) are evaluated again at q_E (same pair, same feature).
-  /// Per body and static collider it touches (a contact with the world), and per pair of bodies:
-  /// if all closed contacts of that group end below -kGapCorrectionSlop, the body is translated
-  /// along the group's normal until the highest of them is at -kGapCorrectionSlop (for a pair of
-  /// bodies the two share the translation in inverse proportion to their masses, so that the
-  /// centre of mass of the pair stays). Velocities are kept. A lift never opens a contact that
-  /// carried the body (lifting by the deepest of several would, and feed a rocking limit cycle).
-  /// A body resting on several points of one static collider (a face lying flat, box corners, a
-  /// capsule on its side) is levelled instead: the smallest rigid displacement, translation and
-  /// rotation about S in the metric of M, that brings every one of those points to ≥ -slop
-  /// (LevelOnPoints; otherwise a multi-point rest keeps a corner microns deep for ever). A body
-  /// buried there (its highest point deeper than its collider's bounding diameter, e.g. a die
-  /// reset 10 m under the ground) is first lifted straight along the normal until that point is at
-  /// -kGapCorrectionSlop, and only the rest is levelled: a level body stays level.
-  /// A position projection outside the paper's scheme that bounds the penetration drift of
-  /// rolling contacts; false = the paper's scheme exactly. It adds -m g·Δr of potential energy,
-  /// reported in StepStatistics::gap_correction_energy. For the Tippe-Top on the ground this is a
-  /// lift along +z by the highest closed contact's depth less the slop.
-  bool gap_correction = true;
-  /// The warm start of a contact's percussion: true = extrapolated from the last two steps where
-  /// that is safe (see the header comment), false = the last step's percussion. Measured on the
-  /// Tippe-Top (8 s, `sphere`): 3.6 → 2.1 solver iterations per step, θ(t) within 1e-6 rad.
-  bool extrapolate_warm_start = true;
-};
-/// Throws std::invalid_argument naming the field and its allowed range.
-void ValidateSimulatorOptions(const SimulatorOptions& options);
-
-/// One contact of the index set (12) of the last step, at the midpoint q_M where it was found.
-/// A and B are the two colliders, the normal points from A to B; a static collider is always A.
-struct ContactState {
-  int collider_a = 0;  ///< index into Scene::colliders
-  int collider_b = 0;
-  int body_a = kWorld;  ///< body of A (kWorld: static)
-  int body_b = 0;       ///< body of B
-  int feature = 0;      ///< ContactGeometry::feature of the pair function
-  double gap = 0.0;     ///< g(q_M) ≤ 0 [m]
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< contact point on B, world [m]
-  ContactFrame frame;   ///< n (A → B), t1, t2, world
-  ContactLaw law;       ///< the pair's law (CombineLaws), R̄ of a face patch where it is one
-  int dimension = 1;    ///< ContactDimension(law)
-  /// Λ = (Λ_N, Λ_T1, Λ_T2, Λ_τ) on B [N s, N s, N s, N m s]; components the contact does not
-  /// model are 0.
-  Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
-  /// γ_E = W(q_M)ᵀu_E [m/s, m/s, m/s, rad/s]: velocity of B relative to A, the one the law
-  /// constrained.
-  Eigen::Vector4d relative_velocity = Eigen::Vector4d::Zero();
-};
-
-/// "<first>/<second>": the two colliders' names in Scene::colliders order (e.g.
-/// "big_sphere/ground"). Stable while the scene does not change.
-std::string ContactName(const Scene& scene, const ContactState& contact);
-
-/// Most fixed-point passes of the implicit-midpoint gyroscopic scheme around the contact solve.
-inline constexpr int kMaxGyroscopicPasses = 6;
-
-struct StepStatistics {
-  /// Over the islands' contact solves: iterations summed (and over the passes of
-  /// kImplicitMidpoint), residual and max_change the largest, converged if every island did;
-  /// friction_projected / normal_projected per contact of contacts(). With no closed contact
-  /// iterations = 0 and converged = true.
-  SolverStatistics solver;
-  int closed_contacts = 0;
-  int islands = 0;  ///< contact problems (17) solved: bodies linked by closed contacts
-  /// Deepest penetration of a closed contact at the midpoint, max(0, -g(q_M)) [m].
-  double max_penetration = 0.0;
-  int gyroscopic_passes = 0;  ///< contact solves of this step (1 with kExplicit; 0 without contact)
-  /// Largest Δt·|ω| over the bodies in this step: the explicit gyroscopic scheme's energy error
-  /// per step grows like (Δt·|ω|)².
-  double max_dt_omega = 0.0;
-  /// gyroscopic == kExplicit and max_dt_omega > kExplicitGyroscopicMaxDtOmega: energy can grow by
-  /// O((Δt·|ω|)²) per step and the run can diverge.
-  bool explicit_gyroscopic_unsafe = false;
-  /// Largest translation |Δr| of a body by SimulatorOptions::gap_correction in this step [m]
-  /// (0: none).
-  double gap_correction = 0.0;
-  /// Potential energy the lifts added in this step, Σ -m g·Δr over the moved bodies [J].
-  double gap_correction_energy = 0.0;
-  /// Energy() of the state after this step, gap correction included [J]: the step sums it anyway
-  /// (the state must not overflow it), so a caller need not sum it again. NaN if the step was not
-  /// taken (state_finite false).
-  double energy = 0.0;
-  /// false: this step met a non-finite value (state, free velocities, contact problem, end state or
-  /// the squared norms of the end velocities), i.e. the scheme diverged. The step was not taken:
-  /// state, time and contact report stay at the last finite step, and every later Step() returns at
-  /// once with state_finite = false (nothing advances) until SetState() replaces the state
-  /// (Simulator::diverged()). The mechanical energy of the end state (Energy(), as MechanicalEnergy
-  /// sums it) overflowing counts as non-finite too.
-  bool state_finite = true;
-  /// true: SimulatorOptions::gap_correction produced a non-finite value in this step (a position or
-  /// orientation, the energy, or gap_correction / gap_correction_energy overflowing; only for
-  /// bodies set through the core absurdly far into the ground, e.g. 1e300 m) and was undone: the
-  /// state is the step's end state without the correction, as with gap_correction = false, and
-  /// gap_correction = gap_correction_energy = 0. The step is taken (state_finite stays true).
-  bool gap_correction_undone = false;
-};
 
 class Simulator {
  public:
@@ -262,7 +109,7 @@ class Simulator {
   double time() const { return time_; }
   /// A step met a non-finite value; Step() does nothing until SetState().
   bool diverged() const { return diverged_; }
-  const Scene& scene() const { return scene_; }
+  const Scene& scene() const { return model_.scene; }
   const SimulatorOptions& options() const { return options_; }
   const std::vector<BodyState>& state() const { return state_; }
   /// The closed contacts of the last step, ordered by collider pair and feature.
@@ -297,7 +144,7 @@ class Simulator {
   /// Replaces one collider's law (validated; throws std::invalid_argument / std::out_of_range).
   void SetContactLaw(int collider, const ContactLaw& law);
 
-  double Energy() const { return MechanicalEnergy(scene_, state_); }
+  double Energy() const { return MechanicalEnergy(model_.scene, state_); }
 
   // --- the world changed between two steps (simulator_world.cpp)
 
@@ -329,172 +176,28 @@ class Simulator {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> ExternalWrench(int body) const;
 
  private:
-  // Per-body midpoint data of the current step.
-  struct BodyStep {
-    Eigen::Vector3d position_mid;        // r_S(q_M) [m]
-    Eigen::Quaterniond orientation_mid;  // p_M, normalised
-    Eigen::Matrix3d rotation_mid;        // A(p_M)
-    Eigen::Matrix3d rotation_end;        // A(p_E), for the gap correction
-    Eigen::Vector3d linear_free;         // v_B + g Δt: linear part of u_B + M⁻¹hΔt [m/s]
-    Eigen::Vector3d gyroscopic_impulse;  // Δt·(-ω × Θω) at ω_B (explicit) or ω_M (implicit) [N m s]
-    Eigen::Vector3d angular_free;        // ω_B + Θ⁻¹·gyroscopic_impulse [rad/s]
-    Eigen::Vector3d linear_contact;      // Σ linear parts of W_iΛ_i [N s]
-    Eigen::Vector3d angular_contact;     // Σ J_iᵀΛ_i, in K [N m s]
-    Eigen::Vector3d angular_end;         // ω_E [rad/s]
-    Eigen::Vector3d linear_end;          // v_E [m/s]
-    Eigen::Vector3d position_end;        // r_S(q_E) [m]
-    Eigen::Quaterniond orientation_end;  // p_E, normalised
-    // Δt·A(p_M)ᵀτ: the external torque's impulse in K [N m s], valid if `external`
-    Eigen::Vector3d angular_external;
-    bool external = false;               // an external wrench acts on the body in this step
-    int island = -1;                     // index into islands_ (-1: no closed contact)
-  };
-  // The external wrench of one body (SetExternalWrench), world axes.
-  struct Wrench {
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], through S
-    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // [N m]
-    bool set = false;                                  // not both zero
-  };
-  // Memory of one (pair, feature) across steps.
-  struct ContactMemory {
-    Eigen::Vector3d tangent1 = Eigen::Vector3d::UnitX();
-    Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
-    Eigen::Vector4d percussion_before = Eigen::Vector4d::Zero();  // of the step before that
-    Eigen::Vector4d percussion_before2 = Eigen::Vector4d::Zero();  // and the one before that
-    double rim_hint = 0.0;  // the warm start of B_F's exact prox (ContactWork::rim_hint)
-    long closed_step = -2;  // the step it was last closed in
-    long closed_before = -3;  // the step before that in which it was closed
-    long closed_before2 = -4;  // and the one before that
-    // the next warm start is extrapolated quadratically (SolveIsland), not linearly
-    bool quadratic_served = false;
-    bool sliding = false;    // its friction was projected in its last solve
-    bool converged = false;  // its last solve converged
-    // a warm start that no longer fits (another Δt, law or friction set): start from zero
-    void DropWarmStart() {
-      percussion.setZero();
-      percussion_before.setZero();
-      percussion_before2.setZero();
-      quadratic_served = false;
-    }
-  };
-  // A contact of the index set (12) of the current step.
-  struct ClosedContact {
-    ContactState report;         // geometry, frame, law at q_M; percussion and γ_E after solve
-    ContactJacobian jacobian;    // W at q_M
-    Eigen::Vector4d gamma_begin; // γ^B = W(q_M)ᵀu_B
-    std::uint64_t key = 0;       // (pair, feature) of the warm start and the tangent frame
-    ContactMemory* memory = nullptr;  // memory_[key] (node pointers stay valid on rehash)
-  };
-  // The closed contacts of one body with one static collider, or of two bodies, at q_E.
-  struct GapGroup {
-    int body_a = kWorld;        // kWorld for a static A
-    int body_b = 0;
-    int static_collider = -1;  // A's collider if it is static
-    double highest_gap = 0.0;  // g(q_E) [m]
-    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  };
-  // Bodies linked by closed contacts: one contact problem (17).
-  struct Island {
-    int first_contact = 0;  // into island_contacts_
-    int contact_count = 0;
-  };
-
   void Initialize();
-  // the per-body and per-collider arrays derived from scene_ (inertia_, planes_, needs_sweep_,
-  // collider poses, radii, the step's workspace sizes): by Initialize and after AddBodies /
-  // RemoveBodies; keeps the warm-start memory, the contact report and the wrenches
+  // the arrays derived from the scene (Model::BuildCaches) and the step's workspace sizes: by
+  // Initialize and after AddBodies / RemoveBodies; keeps the warm-start memory, the contact
+  // report and the wrenches
   void BuildCaches();
-  void ComputeMidpoints(StepStatistics* stats, bool* finite);
-  void FindContacts(StepStatistics* stats);
-  void AddPairContacts(int first, int second);
-  void BuildIslands(StepStatistics* stats);
-  // false if an island's contact problem is not finite (nothing solved)
-  bool SolveIsland(const Island& island, StepStatistics* stats);
-  // (18), (15) into body_step_; false if any end value is not finite (state_ untouched)
-  bool ComputeEndState();
-  void CorrectGaps(StepStatistics* stats);
-  // levels a body on the closed contacts [first, last) of closed_ (one pair with a static
-  // collider, end geometry `end`); false if fewer than two of them are found at q_E
-  bool LevelOnPoints(std::size_t first, std::size_t last, const ContactGeometry* end, int count,
-                     StepStatistics* stats);
-  // (18): the contact impulses M⁻¹ Σ W_iΛ_i of the island's contacts from lambda_
-  void ApplyImpulses(const Island& island);
-  // an island of one contact on an explicit step: SolveIsland's result without the block
-  // problem (ContactSolver::SolveOnePrevalidated)
-  bool SolveLoneContact(const Island& island, StepStatistics* stats);
-  // SolveIsland's parts for one contact: its warm start (above), the block G_ij of (16) with a
-  // contact of its island, its c_i (16), its impulse W_iΛ_i added to its bodies' sums, and what
-  // the solve leaves in its report and memory (`alone`: the only contact of its island)
-  Eigen::Vector4d WarmStart(const ContactMemory& memory, bool extrapolating) const;
-  Eigen::Matrix4d DelassusBlock(const ClosedContact& a, const ClosedContact& b) const;
-  Eigen::Vector4d FreeContactVelocity(const ClosedContact& c) const;
-  void AddContactImpulse(const ClosedContact& c, const Eigen::Vector4d& percussion);
-  void RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
-                     bool friction_projected, bool alone, double rim_hint);
-  // the law of a pair with the overrides of SetFrictionSet
-  ContactLaw PairLaw(int first, int second) const;
-  // collider_pose_ of a collider on a body at q_M (end = false) or q_E (end = true).
-  void UpdateColliderPose(int collider, bool end);
-
-  Scene scene_;
-  SimulatorOptions options_;
-  std::vector<BodyState> state_;
-  double time_ = 0.0;
-  long step_count_ = 0;
-  bool diverged_ = false;
-  bool implicit_step_ = false;  // this step uses the implicit midpoint rule (ComputeMidpoints)
-  std::vector<ContactState> contacts_;
-  ContactSolver solver_;
-  // per body: M⁻¹ (10), computed once
-  std::vector<BodyInertia> inertia_;
-  // friction sets set per contact name by SetFrictionSet: (first, second) collider → set
-  std::vector<std::pair<std::pair<int, int>, FrictionSet>> pair_sets_;
-  std::vector<int> planes_;  // static plane colliders
-  // whether two colliders that are not planes can meet (two bodies with colliders, or a body and
-  // a static collider that is not a plane): without, the sweep is skipped
-  bool needs_sweep_ = false;
-  std::vector<Eigen::Isometry3d> collider_pose_;  // per collider, at q_M during FindContacts
-  // per collider: its pose has a rotation (not identity); bytes, not std::vector<bool>: it is read
-  // per collider and step
-  std::vector<std::uint8_t> collider_rotated_;
-  std::vector<double> bounding_radius_;  // per collider: BoundingRadius of its shape [m]
-  // warm starts and tangent frames by (pair, feature)
-  std::unordered_map<std::uint64_t, ContactMemory> memory_;
-  // per body: the external wrench (SetExternalWrench); any_wrench_: one of them is set (a world
-  // without one skips the work in ComputeMidpoints)
-  std::vector<Wrench> wrench_;
-  bool any_wrench_ = false;
-  // workspace of Step(), sized once
-  std::vector<BodyStep> body_step_;
-  // the colliders that are not planes in the sweep order of the last step (emptied by
-  // BuildCaches): nearly sorted for the next step's sweep
-  std::vector<BoundingSphere> spheres_;
-  std::vector<std::pair<int, int>> pairs_;
-  std::vector<std::pair<int, int>> merged_pairs_;  // FindContacts' merge of plane and sweep pairs
-  // closed_[0, closed_count_): the contacts of this step; the storage only grows (a contact is
-  // not cheap to construct, every field is written when it is reused)
-  std::vector<ClosedContact> closed_;
-  std::size_t closed_count_ = 0;
-  std::vector<Island> islands_;
-  std::vector<int> island_contacts_;  // contact indices grouped by island
-  std::vector<int> union_find_;       // per body
-  std::vector<int> island_bodies_;    // body indices grouped by island (same order as contacts)
-  std::vector<int> island_body_start_;
-  std::vector<GapGroup> gap_groups_;
-  // the pair function's output (a member: eight ContactGeometry are not free to construct)
-  std::array<ContactGeometry, kMaxPairContacts> geometry_;
-  // the contact problem of the island being solved, in blocks (contact k of the island is block
-  // k), and its percussions; they only grow
-  BlockContactProblem problem_;
-  std::vector<Eigen::Vector4d> lambda_;
-  std::vector<double> rim_hints_;  // with lambda_: the solver's warm start of B_F's prox
-  SolverStatistics island_stats_;
   // Throws std::invalid_argument (naming the body, the field and its allowed range) unless the
   // mechanical energy of `state` in `scene` (MechanicalEnergy) and each of its terms are finite:
   // the constructor, AddBodies, SetState and SetBodyStates, after ValidateState.
   static void RequireFiniteEnergy(const Scene& scene, const std::vector<BodyState>& state);
-  // CorrectGaps moved a body in this step (then Step checks what it did)
-  bool gap_moved_ = false;
+
+  Model model_;  // changed only by the setters and world changes, between two steps
+  SimulatorOptions options_;
+  std::vector<BodyState> state_;
+  double time_ = 0.0;
+  bool diverged_ = false;
+  std::vector<ContactState> contacts_;  // the report of the last step
+  StepData data_;
+  // the stages and their workspaces
+  ContactPipeline contact_pipeline_;
+  Islands islands_;
+  IslandProblem island_problem_;
+  PositionProjection position_projection_;
 };
 
 }  // namespace nonsmooth_sim

@@ -1,6 +1,6 @@
 // The key of a contact's memory across steps (warm start, tangent frame): (first collider, second
 // collider, feature) packed in 24 + 24 + 16 bits, first < second. One place for the layout: the
-// contact pipeline (simulator_contacts.cpp) builds keys, RemoveBodies (simulator_world.cpp)
+// contact pipeline (step/contact_pipeline.cpp) builds keys, RemoveBodies (simulator_world.cpp)
 // re-keys them when collider indices change.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_CONTACT_KEY_H_
 #define NONSMOOTH_SIM_CORE_CONTACT_CONTACT_KEY_H_

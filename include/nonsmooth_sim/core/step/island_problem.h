@@ -1,0 +1,148 @@
+// The contact problem (17) of one island and the impulses (18) it gives: the paper's (16)-(18).
+//   G_ij = W_iᵀ M⁻¹ W_j                                        DelassusBlock
+//   c_i  = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B                     FreeContactVelocity
+//   ξ_i ∈ N_{D_i}(-Λ_i), ξ = G Λ + c                           ContactSolver (contact_solver.h)
+//   u_E  = u_B + M⁻¹ h Δt + M⁻¹ Σ W_i Λ_i                      AddContactImpulse, ApplyImpulses
+// with the warm-start policy (WarmStart; RememberSolve keeps what the next step's start needs, see
+// the header comment of simulator.h) and, for GyroscopicScheme::kImplicitMidpoint, the fixed-point
+// passes of Euler's equations by the implicit midpoint rule around the solve.
+#ifndef NONSMOOTH_SIM_CORE_STEP_ISLAND_PROBLEM_H_
+#define NONSMOOTH_SIM_CORE_STEP_ISLAND_PROBLEM_H_
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "nonsmooth_sim/core/contact/contact_jacobian.h"
+#include "nonsmooth_sim/core/contact_solver.h"
+#include "nonsmooth_sim/core/model.h"
+#include "nonsmooth_sim/core/simulator_options.h"
+#include "nonsmooth_sim/core/step/islands.h"
+#include "nonsmooth_sim/core/step/step_data.h"
+
+namespace nonsmooth_sim {
+
+/// Most fixed-point passes of the implicit-midpoint gyroscopic scheme around the contact solve.
+inline constexpr int kMaxGyroscopicPasses = 6;
+
+// Warm starts extrapolated from a contact's last percussions Λ^{n-1}, Λ^{n-2}, Λ^{n-3}:
+// linear 2Λ^{n-1} - Λ^{n-2}, quadratic 3(Λ^{n-1} - Λ^{n-2}) + Λ^{n-3}.
+inline Eigen::Vector4d LinearStart(const ContactMemory& m) {
+  return 2.0 * m.percussion - m.percussion_before;
+}
+inline Eigen::Vector4d QuadraticStart(const ContactMemory& m) {
+  return 3.0 * (m.percussion - m.percussion_before) + m.percussion_before2;
+}
+
+/// The warm start of a contact in step `step`: the previous step's percussion (zero if the contact
+/// was open then; the memory is zero beyond the contact's dimension), or, `extrapolating`,
+/// extrapolated from the last two or three where its last solve converged.
+[[gnu::always_inline]] inline Eigen::Vector4d WarmStart(const ContactMemory& memory, long step,
+                                                        bool extrapolating) {
+  if (memory.closed_step != step - 1) return Eigen::Vector4d::Zero();
+  if (extrapolating && memory.converged && memory.closed_before == step - 2) {
+    return memory.quadratic_served ? QuadraticStart(memory) : LinearStart(memory);
+  }
+  return memory.percussion;
+}
+
+/// (16) G_ij = W_iᵀ M⁻¹ W_j over the sides the two contacts share a body on.
+[[gnu::always_inline]] inline Eigen::Matrix4d DelassusBlock(const std::vector<BodyInertia>& inertia,
+                                                            const ClosedContact& a,
+                                                            const ClosedContact& b) {
+  Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+  for (const ContactSide& s : a.jacobian.side) {
+    if (s.body < 0) continue;
+    const BodyInertia& body = inertia[static_cast<std::size_t>(s.body)];
+    for (const ContactSide& t : b.jacobian.side) {
+      if (t.body != s.body) continue;
+      block += &s == &t ? OwnDelassusBlock(body, s)
+                        : SideDelassusBlock(body, a.jacobian, s, b.jacobian, t);
+    }
+  }
+  return block;
+}
+
+/// (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B: the contact's
+/// velocity without its percussion, from the free velocities of its bodies (BodyStep::linear_free,
+/// angular_free) [m/s, m/s, m/s, rad/s].
+[[gnu::always_inline]] inline Eigen::Vector4d FreeContactVelocity(const std::vector<BodyStep>& body,
+                                                                  const ClosedContact& c) {
+  Eigen::Vector4d gamma_free = Eigen::Vector4d::Zero();
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    const BodyStep& w = body[static_cast<std::size_t>(side.body)];
+    gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
+  }
+  return gamma_free + c.report.law.restitution * c.gamma_begin;
+}
+
+/// (18) W_iΛ_i added to the contact sums of its bodies: on a side sign (LᵀΛ, JᵀΛ); Λ is zero
+/// beyond the contact's dimension.
+[[gnu::always_inline]] inline void AddContactImpulse(const ClosedContact& c,
+                                                     const Eigen::Vector4d& percussion,
+                                                     std::vector<BodyStep>* body) {
+  const Eigen::Vector3d linear = c.jacobian.linear.transpose() * percussion;
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    BodyStep& w = (*body)[static_cast<std::size_t>(side.body)];
+    w.linear_contact += side.sign * linear;
+    w.angular_contact += side.sign * (side.angular.transpose() * percussion);
+  }
+}
+
+/// Solves the contact problems of a step's islands, one at a time, and keeps what the next step's
+/// warm start needs in the contacts' memories. Holds the solver and the problem's storage (they
+/// only grow: a step allocates nothing once every problem size has been seen).
+class IslandProblem {
+ public:
+  /// Island `index` of `islands` (built on data->closed): G, c, the solve (17), ω_E of its bodies
+  /// and their impulse sums (18) in data->body, percussions in the contacts' reports and memories;
+  /// with data->implicit the implicit-midpoint passes. `state` is q_B, u_B. false if the problem
+  /// is not finite (nothing solved).
+  bool Solve(const Model& model, const SimulatorOptions& options,
+             const std::vector<BodyState>& state, const Islands& islands, std::size_t index,
+             StepData* data, StepStatistics* stats) {
+    // one contact (a top on the ground) on an explicit step: without the block problem
+    const Island& island = islands.islands()[index];
+    if (island.contact_count == 1 && !data->implicit) {
+      return SolveLoneContact(model, options, static_cast<std::size_t>(islands.contact(island, 0)),
+                              data, stats);
+    }
+    return SolveBlocks(model, options, state, islands, index, data, stats);
+  }
+
+ private:
+  // an island of one contact on an explicit step: Solve's result without the block problem
+  // (ContactSolver::SolveOnePrevalidated)
+  bool SolveLoneContact(const Model& model, const SimulatorOptions& options, std::size_t i,
+                        StepData* data, StepStatistics* stats);
+  // the block problem of the island's m contacts (m × m blocks G_ij), and the implicit passes
+  bool SolveBlocks(const Model& model, const SimulatorOptions& options,
+                   const std::vector<BodyState>& state, const Islands& islands, std::size_t index,
+                   StepData* data, StepStatistics* stats);
+  // (18): the contact impulses Σ W_iΛ_i of the island's contacts from lambda_
+  void ApplyImpulses(const Islands& islands, std::size_t index, StepData* data) const;
+  // what the solve leaves in the contact's report and memory (`alone`: the only contact of its
+  // island)
+  void RememberSolve(ClosedContact* contact, const Eigen::Vector4d& percussion,
+                     bool friction_projected, bool alone, double rim_hint, long step) const;
+
+  ContactSolver solver_;
+  // the contact problem of the island being solved, in blocks (contact k of the island is block
+  // k), and its percussions; they only grow
+  BlockContactProblem problem_;
+  std::vector<Eigen::Vector4d> lambda_;
+  std::vector<double> rim_hints_;  // with lambda_: the solver's warm start of B_F's prox
+  SolverStatistics island_stats_;
+};
+
+/// The bodies without a closed contact on an implicit step: ω_E by the implicit midpoint rule
+/// alone, torque-free unless an external torque acts.
+void SolveFreeBodiesImplicit(const Model& model, const SimulatorOptions& options,
+                             const std::vector<BodyState>& state, const Islands& islands,
+                             StepData* data);
+
+}  // namespace nonsmooth_sim
+
+#endif  // NONSMOOTH_SIM_CORE_STEP_ISLAND_PROBLEM_H_

@@ -1,0 +1,37 @@
+// The ranges of SimulatorOptions, see simulator_options.h.
+#include "nonsmooth_sim/core/simulator_options.h"
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace nonsmooth_sim {
+namespace {
+
+constexpr double kMinTimeStep = 1e-7;  // [s]
+constexpr double kMaxTimeStep = 1e-2;  // [s]
+
+}  // namespace
+
+void ValidateSimulatorOptions(const SimulatorOptions& options) {
+  if (!(options.time_step >= kMinTimeStep && options.time_step <= kMaxTimeStep)) {
+    std::ostringstream s;
+    s << "SimulatorOptions.time_step = " << options.time_step << ": must be in [" << kMinTimeStep
+      << ", " << kMaxTimeStep << "] s";
+    throw std::invalid_argument(s.str());
+  }
+  // the tighter cap of a simulation first, so that the message names it
+  if (options.solver.max_iterations > kMaxSimulatorIterations) {
+    throw std::invalid_argument("SimulatorOptions.solver.max_iterations: must be >= 1 and <= " +
+                                std::to_string(kMaxSimulatorIterations) +
+                                " in a simulation (the cap multiplies the work of every step), "
+                                "got " + std::to_string(options.solver.max_iterations));
+  }
+  ValidateSolverOptions(options.solver);
+  if (GyroscopicSchemeName(options.gyroscopic) == "unknown") {
+    throw std::invalid_argument(
+        "SimulatorOptions.gyroscopic must be kExplicit, kImplicitMidpoint or kAuto");
+  }
+}
+
+}  // namespace nonsmooth_sim
