@@ -7,10 +7,6 @@ nonsmooth_sim_add_gtests(DIR test/core LIBRARIES nonsmooth_sim_core)
 # "scene_io.<Suite>.<Test>" (the node has a urdf_scene_test of its own)
 nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
 nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collision_fcl)
-# Physics of the shipped scenes (urdf/*.urdf + config/*.yaml through the loader, stepped by the
-# core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
-nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes
-                         LIBRARIES nonsmooth_sim_scene_io nonsmooth_sim_core)
 # An independent reference for bodies rolling without slipping (test/reference/rolling_reference.h:
 # Eigen and Boost.Odeint only, nothing of the core), for tests that hold the integrators to it
 # (#include "reference/rolling_reference.h"); its own checks are "reference.<Suite>.<Test>".
@@ -22,6 +18,10 @@ add_library(nonsmooth_sim_rolling_reference STATIC EXCLUDE_FROM_ALL
 target_include_directories(nonsmooth_sim_rolling_reference PUBLIC ${PROJECT_SOURCE_DIR}/test)
 target_link_libraries(nonsmooth_sim_rolling_reference PUBLIC Eigen3::Eigen Boost::headers)
 nonsmooth_sim_add_gtests(DIR test/reference PREFIX reference LIBRARIES nonsmooth_sim_rolling_reference)
+# Physics of the shipped scenes (urdf/*.urdf + config/*.yaml through the loader, stepped by the
+# core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
+nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes LIBRARIES nonsmooth_sim_scene_io
+                         nonsmooth_sim_core nonsmooth_sim_rolling_reference)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:

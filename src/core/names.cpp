@@ -31,6 +31,7 @@ constexpr std::array<SolverType, 3> kAllSolverTypes = {
     SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel};
 constexpr std::array<GyroscopicScheme, 3> kAllGyroscopicSchemes = {
     GyroscopicScheme::kExplicit, GyroscopicScheme::kImplicitMidpoint, GyroscopicScheme::kAuto};
+constexpr std::array<Integrator, 2> kAllIntegrators = {Integrator::kMoreau, Integrator::kMoreau2};
 
 }  // namespace
 
@@ -72,6 +73,17 @@ std::string_view GyroscopicSchemeName(GyroscopicScheme scheme) {
 }
 std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name) {
   return FromName(name, kAllGyroscopicSchemes, &GyroscopicSchemeName);
+}
+
+std::string_view IntegratorName(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kMoreau: return "moreau";
+    case Integrator::kMoreau2: return "moreau2";
+  }
+  return "unknown";
+}
+std::optional<Integrator> IntegratorFromName(std::string_view name) {
+  return FromName(name, kAllIntegrators, &IntegratorName);
 }
 
 }  // namespace nonsmooth_sim

@@ -81,6 +81,7 @@ void Simulator::Step(StepStatistics* out) {
   if (diverged_) return;
 
   // (13) q_M and the free velocities of (14)
+  data_.second_order = options_.integrator == Integrator::kMoreau2;
   bool finite = true;
   ComputeMidpoints(model_, options_, state_, &data_, &stats, &finite);
   if (!finite) {
@@ -162,6 +163,8 @@ void Simulator::Step(StepStatistics* out) {
     }
   }
   stats.energy = energy;
+  // kMoreau2: the end gaps of the closed contacts after the lift (the next step's g(q_B))
+  if (data_.second_order) contact_pipeline_.RecordEndGaps(model_, state_, &data_);
   // the report: γ_E = W(q_M)ᵀu_E, the velocity the contact law constrained
   contacts_.resize(data_.closed_count);
   for (std::size_t i = 0; i < data_.closed_count; ++i) {
@@ -174,7 +177,9 @@ void Simulator::Step(StepStatistics* out) {
           SideVelocity(c.jacobian, side, s.linear_velocity, s.angular_velocity);
     }
     contacts_[i] = c.report;
+    if (data_.second_order) c.memory->gamma_end = c.report.relative_velocity;
   }
+  data_.previous_time_step = options_.time_step;
   ++data_.step;
 }
 

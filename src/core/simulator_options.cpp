@@ -32,6 +32,9 @@ void ValidateSimulatorOptions(const SimulatorOptions& options) {
     throw std::invalid_argument(
         "SimulatorOptions.gyroscopic must be kExplicit, kImplicitMidpoint or kAuto");
   }
+  if (IntegratorName(options.integrator) == "unknown") {
+    throw std::invalid_argument("SimulatorOptions.integrator must be kMoreau or kMoreau2");
+  }
 }
 
 }  // namespace nonsmooth_sim

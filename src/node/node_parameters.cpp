@@ -181,6 +181,8 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   NodeParameters p;
   // explicit while Δt·|ω| is in its safe range, implicit midpoint beyond (as simulate)
   p.simulator.gyroscopic = GyroscopicScheme::kAuto;
+  // the second-order scheme (as simulate)
+  p.simulator.integrator = Integrator::kMoreau2;
 
   r.String("urdf_file", &p.urdf_file);
   if (!p.urdf_file.empty()) {
@@ -226,6 +228,13 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
                              "\", expected auto, explicit or implicit_midpoint");
   }
   p.simulator.gyroscopic = *gyroscopic;
+  name = std::string(IntegratorName(p.simulator.integrator));
+  r.String("integrator", &name);
+  const auto integrator = IntegratorFromName(name);
+  if (!integrator) {
+    r.Fail("integrator", "unknown integrator \"" + name + "\", expected moreau2 or moreau");
+  }
+  p.simulator.integrator = *integrator;
   r.Bool("gap_correction", &p.simulator.gap_correction);
   r.Bool("extrapolate_warm_start", &p.simulator.extrapolate_warm_start);
 

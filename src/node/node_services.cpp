@@ -276,6 +276,7 @@ bool SimulationNode::OnGetSolverProperties(GetSolverProperties::Request&,
   res.max_iterations = o.solver.max_iterations;
   res.relaxation = o.solver.relaxation;
   res.gyroscopic = std::string(GyroscopicSchemeName(o.gyroscopic));
+  res.integrator = std::string(IntegratorName(o.integrator));
   return true;
 }
 
@@ -307,6 +308,14 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
       }
       o.gyroscopic = *scheme;
     }
+    if (!req.integrator.empty()) {
+      const auto integrator = IntegratorFromName(req.integrator);
+      if (!integrator) {
+        throw std::invalid_argument("unknown integrator \"" + req.integrator +
+                                    "\", expected moreau2 or moreau");
+      }
+      o.integrator = *integrator;
+    }
     ValidateSimulatorOptions(o);
     sim_->SetOptions(o);
   } catch (const std::exception& e) {
@@ -323,7 +332,8 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
   message << "time step " << o.time_step << " s, solver " << SolverTypeName(o.solver.type)
           << ", tolerance " << o.solver.tolerance_rel << " (abs " << o.solver.tolerance_abs
           << "), max iterations " << o.solver.max_iterations << ", relaxation "
-          << o.solver.relaxation << ", gyroscopic " << GyroscopicSchemeName(o.gyroscopic);
+          << o.solver.relaxation << ", gyroscopic " << GyroscopicSchemeName(o.gyroscopic)
+          << ", integrator " << IntegratorName(o.integrator);
   res.status_message = message.str();
   return true;
 }

@@ -92,6 +92,12 @@ const std::map<std::string, Setter>& ValueOptions() {
          if (!scheme) throw BadValue(o, v, "one of auto, explicit, implicit_midpoint");
          c.options.gyroscopic = *scheme;
        }},
+      {"--integrator",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         const auto integrator = IntegratorFromName(v);
+         if (!integrator) throw BadValue(o, v, "one of moreau2, moreau");
+         c.options.integrator = *integrator;
+       }},
       {"--dt",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.options.time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
@@ -226,7 +232,10 @@ std::string UsageText() {
        "  --inclination THETA   Tippe-Top: initial inclination [rad] in [0, pi] (default 0.1)\n"
        "  --spin OMEGA          Tippe-Top: initial spin about the symmetry axis [rad/s]\n"
        "                        (default 180)\n"
-       "  --gyroscopic SCHEME   auto (default), explicit (the paper's) or implicit_midpoint;\n"
+       "  --integrator NAME     moreau2 (default): second order without impacts, contacts held\n"
+       "                        on position level (docs/theory.md); moreau: the paper's midpoint\n"
+       "                        rule (13)-(18) bit for bit, first order\n"
+       "  --gyroscopic SCHEME   (moreau only; moreau2 takes implicit_midpoint) auto (default), explicit (the paper's) or implicit_midpoint;\n"
        "                        explicit is safe for dt*|omega| <= "
     << kExplicitGyroscopicMaxDtOmega
     << " (warned on stderr\n"
@@ -261,6 +270,8 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
   // the paper's explicit gyroscopic term, the implicit midpoint rule in the steps where
   // Δt·|ω| exceeds its safe range (an explicit run that stays inside is bit-identical)
   config.options.gyroscopic = GyroscopicScheme::kAuto;
+  // the second-order scheme: the tops' rolling right at the default step (docs/accuracy.md)
+  config.options.integrator = Integrator::kMoreau2;
   try {
     for (int k = 1; k < argc; ++k) {
       std::string arg = argv[k];

@@ -53,8 +53,9 @@ std::string Optional(const std::optional<double>& t) {
 void PrintReport(const RunSummary& s) {
   const RunConfig& c = s.config;
   if (!s.tippe_top) {
-    std::printf("%s, solver %s (tolerance %g), dt %g s, %g s, gyroscopic %s\n",
-                c.urdf_path.c_str(), std::string(SolverTypeName(c.options.solver.type)).c_str(),
+    std::printf("%s, integrator %s, solver %s (tolerance %g), dt %g s, %g s, gyroscopic %s\n",
+                c.urdf_path.c_str(), std::string(IntegratorName(c.options.integrator)).c_str(),
+                std::string(SolverTypeName(c.options.solver.type)).c_str(),
                 c.options.solver.tolerance_rel, c.options.time_step, c.duration,
                 std::string(GyroscopicSchemeName(c.options.gyroscopic)).c_str());
     std::printf("  %zu bodies; at most %d closed contacts in %d islands; deepest penetration "
@@ -76,8 +77,9 @@ void PrintReport(const RunSummary& s) {
                 c.duration / s.wall_time_s);
     return;
   }
-  std::printf("Tippe-Top, friction set %s, solver %s (tolerance %g), dt %g s, %g s, "
-              "gyroscopic %s\n",
+  std::printf("Tippe-Top, integrator %s, friction set %s, solver %s (tolerance %g), dt %g s, "
+              "%g s, gyroscopic %s\n",
+              std::string(IntegratorName(c.options.integrator)).c_str(),
               std::string(FrictionSetName(c.parameters.friction_set)).c_str(),
               std::string(SolverTypeName(c.options.solver.type)).c_str(),
               c.options.solver.tolerance_rel, c.options.time_step, c.duration,

@@ -114,6 +114,7 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("unconverged_steps", s.unconverged_steps);
   // extras
   json.Add("gyroscopic", std::string(GyroscopicSchemeName(c.options.gyroscopic)));
+  json.Add("integrator", std::string(IntegratorName(c.options.integrator)));
   json.Add("tolerance_rel", c.options.solver.tolerance_rel);
   json.Add("tolerance_abs", c.options.solver.tolerance_abs);
   json.Add("solver_max_iterations", c.options.solver.max_iterations);

@@ -1,7 +1,7 @@
 // States far beyond every scene's scale, set through the C++ API (the node and the loader bound
 // every start to |x| ≤ 1e3 m, |v| ≤ 1e3 m/s, |ω| ≤ 1e4 rad/s): the four core findings of the
-// service-sequence fuzzer (test/fuzz/corpus/service_sequence_fuzz/finding_*.bin, docs/dev-notes.md
-// "Robustness (issue 11)") written out as plain C++. A step that reports state_finite leaves a
+// service-sequence fuzzer (test/fuzz/corpus/service_sequence_fuzz/finding_*.bin) written out as
+// plain C++. A step that reports state_finite leaves a
 // finite state, energy and statistics; SetState refuses a state whose energy overflows; a level die
 // reset deep under the ground is lifted straight. Fixed states, no timing.
 #include <gtest/gtest.h>

@@ -170,6 +170,7 @@ inline SimulatorOptions NodeSimulatorOptions(ros::NodeHandle& nh) {
   options.solver.max_iterations = p.max_iterations;
   options.solver.relaxation = p.relaxation;
   options.gyroscopic = *GyroscopicSchemeFromName(p.gyroscopic);
+  options.integrator = *IntegratorFromName(p.integrator);
   // a start-up parameter only (no service sets it)
   nh.param(kNode + "extrapolate_warm_start", options.extrapolate_warm_start,
            SimulatorOptions().extrapolate_warm_start);

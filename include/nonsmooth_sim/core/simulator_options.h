@@ -22,6 +22,19 @@ enum class GyroscopicScheme {
 std::string_view GyroscopicSchemeName(GyroscopicScheme scheme);
 std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name);
 
+/// The time-stepping scheme (docs/theory.md, "The second-order integrator"). Both are built from
+/// the same stages (core/step/) and solve the same normal-cone inclusion per contact.
+enum class Integrator {
+  kMoreau,   ///< "moreau": the paper's midpoint rule (13)-(18), bit for bit; first order
+  kMoreau2,  ///< "moreau2": second order without impacts: a contact closed in the last step
+             ///< imposes its law on the end velocity W(q_E)ᵀu_E (W(q_E) estimated from this
+             ///< step's and the last step's W(q_M)) and is held on position level, a sliding
+             ///< one acts against the midpoint velocity; the gyroscopic term by the implicit
+             ///< midpoint rule; a contact that closes (an impact) as in kMoreau
+};
+std::string_view IntegratorName(Integrator integrator);
+std::optional<Integrator> IntegratorFromName(std::string_view name);
+
 /// Δt·|ω| up to which the explicit gyroscopic term is considered safe (StepStatistics::
 /// explicit_gyroscopic_unsafe). Measured on the Tippe-Top: runs with Δt·|ω| ≤ 0.18 never gained
 /// energy, from 0.2 they gain, from 0.4-0.5 they blow up (non-finite state); 0.1 keeps a margin.
@@ -44,6 +57,9 @@ struct SimulatorOptions {
   /// [kMinRelaxation, 2) (ValidateSolverOptions, contact_solver.h)
   SolverOptions solver;
   GyroscopicScheme gyroscopic = GyroscopicScheme::kExplicit;
+  /// kMoreau is the library's default (the paper's scheme, the reference); `simulate` and the
+  /// node default to kMoreau2. kMoreau2 takes the implicit midpoint rule whatever `gyroscopic`.
+  Integrator integrator = Integrator::kMoreau;
   /// After (15), the closed contacts (12) are evaluated again at q_E (same pair, same feature).
   /// Per body and static collider it touches (a contact with the world), and per pair of bodies:
   /// if all closed contacts of that group end below -kGapCorrectionSlop, the body is translated

@@ -37,7 +37,7 @@ struct NodeParameters {
                                   ///< (default: its <robot name>)
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
-                                  ///< ~max_iterations, ~relaxation, ~gyroscopic,
+                                  ///< ~max_iterations, ~relaxation, ~gyroscopic, ~integrator,
                                   ///< ~gap_correction (bool, default true)
   std::string initial_body;       ///< ~initial/body: the body the initial conditions move
   InitialConditions initial;      ///< ~initial/{inclination,spin,position,orientation,

@@ -3,6 +3,7 @@
 #include "nonsmooth_sim/core/step/contact_pipeline.h"
 
 #include <algorithm>
+#include <limits>
 #include <tuple>
 
 #include "nonsmooth_sim/core/contact/contact_frame.h"
@@ -23,7 +24,9 @@ void ContactPipeline::FindContacts(const Model& model, const std::vector<BodySta
   const std::vector<Collider>& colliders = model.scene.colliders;
   data->closed_count = 0;
   pairs_.clear();
-  // broad phase: every body collider against every static plane, the rest by sweep and prune
+  // broad phase: every body collider against every static plane, the rest by sweep and prune;
+  // kMoreau2 pads the bounding spheres by the persistent contacts' margin (AddPairContacts)
+  const double pad = data->second_order ? kPersistentContactMargin : 0.0;
   for (std::size_t i = 0; i < colliders.size(); ++i) {
     const Collider& c = colliders[i];
     if (c.shape.type == ShapeType::kPlane) continue;
@@ -34,7 +37,7 @@ void ContactPipeline::FindContacts(const Model& model, const std::vector<BodySta
       const Eigen::Isometry3d& plane = colliders[static_cast<std::size_t>(p)].pose;
       // height of the centre above the plane z = 0 of the plane frame
       const double height = plane.linear().col(2).dot(center - plane.translation());
-      if (height <= model.bounding_radius[i]) {
+      if (height <= model.bounding_radius[i] + pad) {
         pairs_.emplace_back(std::min(static_cast<int>(i), p), std::max(static_cast<int>(i), p));
       }
     }
@@ -54,7 +57,7 @@ void ContactPipeline::FindContacts(const Model& model, const std::vector<BodySta
     for (BoundingSphere& sphere : spheres_) {
       const std::size_t i = static_cast<std::size_t>(sphere.collider);
       sphere.center = data->collider_pose[i].translation();
-      sphere.radius = model.bounding_radius[i];
+      sphere.radius = model.bounding_radius[i] + pad;
     }
     // a deterministic order: by collider pair (the contact order of the Gauss-Seidel sweep),
     // the sweep's pairs sorted apart and merged with the planes'
@@ -90,15 +93,6 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
   const Eigen::Isometry3d& pose_a = data->collider_pose[static_cast<std::size_t>(a)];
   const Eigen::Isometry3d& pose_b = data->collider_pose[static_cast<std::size_t>(b)];
   ContactGeometry* geometry = geometry_.data();
-  // points up to the hysteresis gap: the index set below decides which close
-  const int count =
-      Collide(collider_a.shape, pose_a, collider_b.shape, pose_b, kContactHysteresis, geometry);
-  if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
-  const ContactLaw law = model.PairLaw(first, second);
-  // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
-  const Eigen::Vector3d hint = collider_a.shape.type == ShapeType::kPlane
-                                   ? Eigen::Vector3d(pose_a.linear().col(0))
-                                   : Eigen::Vector3d::UnitX();
   // (12): g(q_M) ≤ 0, or ≤ kContactHysteresis while the pair had a closed contact in the last
   // step (of any feature: a face that tilts past the flat tolerance hands over to its corners)
   const std::uint64_t pair_key = ContactKey(first, second, kPairFeature);
@@ -107,11 +101,30 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
   ContactMemory* pair_memory = found != memories.end() ? &found->second : nullptr;
   const bool pair_was_closed = pair_memory != nullptr && pair_memory->closed_step == step - 1;
   const double max_gap = pair_was_closed ? kContactHysteresis : 0.0;
+  // kMoreau2: a feature closed in the last step also while g(q_B) ≤ kPersistentContactGap
+  const bool persistent = pair_was_closed && data->second_order;
+  // points up to the hysteresis gap (the margin for persistent ones): the index set below
+  // decides which close
+  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,
+                            persistent ? kPersistentContactMargin : kContactHysteresis, geometry);
+  if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
+  const ContactLaw law = model.PairLaw(first, second);
+  // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
+  const Eigen::Vector3d hint = collider_a.shape.type == ShapeType::kPlane
+                                   ? Eigen::Vector3d(pose_a.linear().col(0))
+                                   : Eigen::Vector3d::UnitX();
   bool any_closed = false;
   for (int k = 0; k < count; ++k) {
     const ContactGeometry& g = geometry[k];
     const std::uint64_t key = ContactKey(first, second, g.feature);
-    if (g.gap > max_gap) continue;
+    if (g.gap > max_gap) {
+      if (!persistent) continue;
+      const auto feature = memories.find(key);
+      if (feature == memories.end() || feature->second.closed_step != step - 1 ||
+          !(feature->second.gap_end <= kPersistentContactGap)) {
+        continue;
+      }
+    }
     any_closed = true;
     auto memory = memories.end();
     if (data->closed_count == data->closed.size()) data->closed.emplace_back();
@@ -150,7 +163,8 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
       const BodyStep& w = data->body[static_cast<std::size_t>(side.body)];
       SetAngularRows(ContactAngularRows(r.frame, *points[s], w.position_mid, w.rotation_mid),
                      model.inertia[static_cast<std::size_t>(side.body)], &side);
-      if (r.law.restitution == 0.0) continue;  // γ^B enters c only through ε (16)
+      // γ^B enters c only through ε (16), and in kMoreau2's end-point law
+      if (r.law.restitution == 0.0 && !data->second_order) continue;
       const BodyState& begin = state[static_cast<std::size_t>(side.body)];
       // γ^B = W(q_M)ᵀu_B
       c.gamma_begin +=
@@ -161,6 +175,33 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
   if (any_closed) {
     if (pair_memory == nullptr) pair_memory = &memories.try_emplace(pair_key).first->second;
     pair_memory->closed_step = step;
+  }
+}
+
+void ContactPipeline::RecordEndGaps(const Model& model, const std::vector<BodyState>& state,
+                                    StepData* data) {
+  const std::vector<Collider>& colliders = model.scene.colliders;
+  std::size_t i = 0;
+  while (i < data->closed_count) {
+    // the contacts of one pair are consecutive in data->closed
+    std::size_t j = i;
+    while (j < data->closed_count && data->closed[j].key >> 16 == data->closed[i].key >> 16) ++j;
+    const ContactState& first = data->closed[i].report;
+    const std::size_t a = static_cast<std::size_t>(first.collider_a);
+    const std::size_t b = static_cast<std::size_t>(first.collider_b);
+    UpdateColliderPose(model, state, first.collider_a, /*end=*/true, data);
+    UpdateColliderPose(model, state, first.collider_b, /*end=*/true, data);
+    ContactGeometry* end = geometry_.data();
+    const int count = Collide(colliders[a].shape, data->collider_pose[a], colliders[b].shape,
+                              data->collider_pose[b], kPersistentContactMargin, end);
+    for (std::size_t k = i; k < j; ++k) {
+      double gap = std::numeric_limits<double>::infinity();  // the feature is gone
+      for (int e = 0; e < count; ++e) {
+        if (end[e].feature == data->closed[k].report.feature) gap = end[e].gap;
+      }
+      data->closed[k].memory->gap_end = gap;
+    }
+    i = j;
   }
 }
 

@@ -130,8 +130,12 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   for (int k = 0; m > 1 && k < m && extrapolating; ++k) extrapolating = slid(k);
   // B_F's exact prox is warm-started too (its hint); other sets have none to carry
   bool any_exact = false;
+  const bool second_order = data->second_order;
   for (int k = 0; k < m; ++k) {
-    const ClosedContact& c = contact(k);
+    ClosedContact& c = contact(k);
+    // kMoreau2: friction against the midpoint velocity while a persistent contact slides
+    c.friction_midpoint = second_order && c.report.dimension > 1 &&
+                          c.memory->closed_step == step - 1 && c.memory->sliding;
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
     any_exact = any_exact || c.report.law.friction_set == FrictionSet::kExact;
     lambda_[static_cast<std::size_t>(k)] = WarmStart(*c.memory, step, extrapolating);
@@ -156,12 +160,17 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   const double pass_tolerance = std::max(options.solver.tolerance_rel, kGyroscopicRoundOff);
   int total_iterations = 0;
   int passes = 0;
+  const auto free_velocity = [&](int k) {
+    return second_order ? SecondOrderContactVelocity(data->body, contact(k), dt,
+                                                     data->previous_time_step, step)
+                        : FreeContactVelocity(data->body, contact(k));
+  };
   for (int pass = 0; pass < kMaxGyroscopicPasses; ++pass) {
     // (16) c_i, with this pass's gyroscopic impulse
     bool finite = true;
     for (int k = 0; k < m; ++k) {
       Eigen::Vector4d& ci = problem_.c[static_cast<std::size_t>(k)];
-      ci = FreeContactVelocity(data->body, contact(k));
+      ci = free_velocity(k);
       finite = finite && AllFinite(ci);
     }
     // a diverged state (huge ω) can overflow c: not solved
@@ -171,6 +180,24 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
     solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
                               any_exact ? &rim_hints_ : nullptr);
     total_iterations += island_stats_.iterations;
+    if (second_order) {
+      // kMoreau2: a contact that slid and now sticks has its law on the end velocity instead
+      // (on the midpoint velocity a stick would reverse the slip), solved again
+      bool again = false;
+      for (int k = 0; k < m; ++k) {
+        ClosedContact& c = contact(k);
+        if (c.friction_midpoint && !island_stats_.friction_projected[static_cast<std::size_t>(k)]) {
+          c.friction_midpoint = false;
+          again = true;
+        }
+      }
+      if (again) {
+        for (int k = 0; k < m; ++k) problem_.c[static_cast<std::size_t>(k)] = free_velocity(k);
+        solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
+                                  any_exact ? &rim_hints_ : nullptr);
+        total_iterations += island_stats_.iterations;
+      }
+    }
     passes = pass + 1;
     ApplyImpulses(islands, index, data);
     if (!implicit) {

@@ -53,7 +53,8 @@ void ComputeMidpoints(const Model& model, const SimulatorOptions& options,
   }
   stats->max_dt_omega = std::max(stats->max_dt_omega, dt * std::sqrt(max_omega_sq));
   const bool beyond = stats->max_dt_omega > kExplicitGyroscopicMaxDtOmega;
-  data->implicit = options.gyroscopic == GyroscopicScheme::kImplicitMidpoint ||
+  data->implicit = options.integrator == Integrator::kMoreau2 ||
+                   options.gyroscopic == GyroscopicScheme::kImplicitMidpoint ||
                    (options.gyroscopic == GyroscopicScheme::kAuto && beyond);
   stats->explicit_gyroscopic_unsafe = !data->implicit && beyond;
 }

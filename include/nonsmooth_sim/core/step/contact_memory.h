@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 namespace nonsmooth_sim {
@@ -25,7 +26,18 @@ struct ContactMemory {
   bool quadratic_served = false;
   bool sliding = false;    ///< its friction was projected in its last solve
   bool converged = false;  ///< its last solve converged
+  /// Integrator::kMoreau2: γ_E = W(q_M)ᵀu_E of the step it was last closed in [m/s, m/s, m/s,
+  /// rad/s], and its gap g(q_E) at the end of that step (before the gap correction; +∞ where the
+  /// feature was gone) [m]
+  Eigen::Vector4d gamma_end = Eigen::Vector4d::Zero();
+  double gap_end = std::numeric_limits<double>::infinity();
 
+  /// The warm start of a step `ratio` times as long (a percussion is a force times Δt).
+  void ScaleWarmStart(double ratio) {
+    percussion *= ratio;
+    percussion_before *= ratio;
+    percussion_before2 *= ratio;
+  }
   /// A warm start that no longer fits (another Δt, law or friction set): start from zero.
   void DropWarmStart() {
     percussion.setZero();

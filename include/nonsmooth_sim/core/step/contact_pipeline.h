@@ -29,12 +29,18 @@ namespace nonsmooth_sim {
 /// for a step (a hop of g Δt). A contact that separates has Λ = 0 whether it is in the index set
 /// or not (no adhesion; its friction bound μΛ_N is 0), so this changes nothing but the catching
 /// of a body that comes back within 1 nm of where it left: far below every scale of the scenes.
-/// The broad phase has no such margin: a sphere on a plane (its bounding sphere is the shape) keeps
-/// g ≤ 0 exactly. Widening it by the hysteresis changed the Tippe-Top's θ(t) by up to 1.2e-5 rad
-/// (a contact kept closed at a positive gap stops the gap correction's lift of the other sphere),
-/// so the margin is left to the bodies with faces and corners, where it was needed.
+/// The broad phase pads every bounding sphere by it (Model's bounding radii), so that it passes
+/// such a pair to the narrow phase (a sphere's bounding sphere is the sphere itself).
 inline constexpr double kContactHysteresis = 1e-9;
 
+/// Integrator::kMoreau2 keeps a contact closed in the last step in the index set while it ended
+/// that step within this gap (g(q_E) ≤ 1e-6 m), whatever g(q_M): a contact point that moves over
+/// a curved surface lies above it at the midpoint q_M = q_B + Δt/2 u_B (a straight line in the
+/// coordinates) by O(Δt²) (Euler's disk: ~1e-7 m at Δt = 1e-4), which would open it for a step,
+/// differently for steps of Δt and Δt/2. A separating contact in the index set gets Λ_N = 0.
+inline constexpr double kPersistentContactGap = 1e-6;
+/// The broad phase and the pair functions look this far [m] for such contacts (kMoreau2).
+inline constexpr double kPersistentContactMargin = 1e-4;
 /// The feature id of a pair's own memory (ContactKey with it: "the pair had a closed contact").
 inline constexpr int kPairFeature = 0xffff;
 
@@ -72,6 +78,9 @@ class ContactPipeline {
   /// data->step. stats: closed_contacts and max_penetration.
   void FindContacts(const Model& model, const std::vector<BodyState>& state, StepData* data,
                     StepStatistics* stats);
+  /// Integrator::kMoreau2: g(q_E) of every closed contact into its memory (gap_end), with the
+  /// collider poses at q_E (`state` = q_E).
+  void RecordEndGaps(const Model& model, const std::vector<BodyState>& state, StepData* data);
 
  private:
   void AddPairContacts(const Model& model, const std::vector<BodyState>& state, int first,

@@ -10,6 +10,8 @@
 #define NONSMOOTH_SIM_CORE_STEP_ISLAND_PROBLEM_H_
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -75,6 +77,46 @@ inline Eigen::Vector4d QuadraticStart(const ContactMemory& m) {
     gamma_free += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
   }
   return gamma_free + c.report.law.restitution * c.gamma_begin;
+}
+
+/// Integrator::kMoreau2 holds a persistent contact on position level: its normal law acts on
+/// γ_N(q_E) + β max(g(q_B), -d)/Δt, so that a gap or a shallow penetration g(q_B) left by the last
+/// step decays by the factor 1 - β per step instead of drifting (the per-step drift is O(Δt³), so
+/// the term stays O(Δt²) in the velocity). docs/theory.md.
+inline constexpr double kPositionGain = 0.2;
+/// d [m]: the deepest penetration the position term pushes out at its full rate. An impact leaves
+/// its contact up to |γ_N|Δt/2 deep; pushed out at β g/Δt, that is a bounce of β|γ_N|/2 whatever
+/// Δt (a die landing at 0.5 m/s came off the floor again). Deeper than d, the term pushes at
+/// β d/Δt (2e-5 m/s at Δt = 1e-4) and the gap correction lifts what is below its slop (1 µm).
+inline constexpr double kPositionHoldDepth = 1e-8;
+
+/// c_i of Integrator::kMoreau2 (docs/theory.md, "The second-order integrator"). A contact that
+/// closes in this step (an impact) is Moreau's, FreeContactVelocity. A contact closed in the last
+/// step imposes its law on the end velocity W(q_E)ᵀu_E ≈ γ_E + γ^B - γ_B, where W(q_B)ᵀu_B = γ_B
+/// is interpolated between this step's W(q_M) (γ^B = W(q_M)ᵀu_B, Δt/2 after q_B) and the last
+/// step's (γ_E^{n-1} = W(q_M^{n-1})ᵀu_B, Δt_{n-1}/2 before q_B):
+///   γ^B - γ_B = Δt/(Δt + Δt_{n-1}) (γ^B - γ_E^{n-1})            ((γ^B - γ_E^{n-1})/2 for equal steps)
+/// plus the position term β g(q_B)/Δt on the normal; a contact whose friction slid in the last
+/// step and slides on (ClosedContact::friction_midpoint) has its friction act against the
+/// midpoint velocity, ξ_F = γ_E + γ^B (twice (γ_B + γ_E)/2 at q_M). Restitution does not enter a
+/// persistent contact.
+[[gnu::always_inline]] inline Eigen::Vector4d SecondOrderContactVelocity(
+    const std::vector<BodyStep>& body, const ClosedContact& c, double dt, double previous_dt,
+    long step) {
+  const ContactMemory& memory = *c.memory;
+  if (memory.closed_step != step - 1) return FreeContactVelocity(body, c);
+  Eigen::Vector4d velocity = Eigen::Vector4d::Zero();
+  for (const ContactSide& side : c.jacobian.side) {
+    if (side.body < 0) continue;
+    const BodyStep& w = body[static_cast<std::size_t>(side.body)];
+    velocity += SideVelocity(c.jacobian, side, w.linear_free, w.angular_free);
+  }
+  Eigen::Vector4d shift = (dt / (dt + previous_dt)) * (c.gamma_begin - memory.gamma_end);
+  if (c.friction_midpoint) shift.tail<3>() = c.gamma_begin.tail<3>();
+  if (std::isfinite(memory.gap_end)) {
+    shift(kNormal) += (kPositionGain / dt) * std::max(memory.gap_end, -kPositionHoldDepth);
+  }
+  return velocity + shift;
 }
 
 /// (18) W_iΛ_i added to the contact sums of its bodies: on a side sign (LᵀΛ, JᵀΛ); Λ is zero

@@ -43,8 +43,12 @@ struct BodyStep {
 struct ClosedContact {
   ContactState report;          ///< geometry, frame, law at q_M; percussion and γ_E after solve
   ContactJacobian jacobian;     ///< W at q_M
-  /// γ^B = W(q_M)ᵀu_B (computed only where the law's ε ≠ 0, zero otherwise)
+  /// γ^B = W(q_M)ᵀu_B (computed only where the law's ε ≠ 0 or for Integrator::kMoreau2, zero
+  /// otherwise)
   Eigen::Vector4d gamma_begin = Eigen::Vector4d::Zero();
+  /// kMoreau2: its friction acts against the midpoint velocity (it slid in the last step and
+  /// slides on); false: against the end velocity
+  bool friction_midpoint = false;
   std::uint64_t key = 0;        ///< (pair, feature) of the warm start and the tangent frame
   ContactMemory* memory = nullptr;  ///< memory[key] (node pointers stay valid on rehash)
 };
@@ -63,6 +67,8 @@ struct StepData {
   ContactMemoryMap memory;
   long step = 0;          ///< steps taken: the clock of ContactMemory's closing steps
   bool implicit = false;  ///< this step uses the implicit midpoint rule (ComputeMidpoints)
+  bool second_order = false;  ///< this step is Integrator::kMoreau2's
+  double previous_time_step = 0.0;  ///< Δt of the last step taken [s] (kMoreau2)
 
   /// Sizes the per-body and per-collider arrays for `model` (keeps the memory); no closed
   /// contact.
