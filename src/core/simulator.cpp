@@ -258,6 +258,45 @@ void Simulator::SetOptions(const SimulatorOptions& options) {
   options_ = options;
 }
 
+void Simulator::SetTimeStep(double time_step) {
+  SimulatorOptions options = options_;
+  options.time_step = time_step;
+  ValidateSimulatorOptions(options);
+  const double ratio = time_step / options_.time_step;
+  if (ratio != 1.0) {
+    for (auto& [key, memory] : data_.memory) memory.ScaleWarmStart(ratio);
+  }
+  options_ = options;
+}
+
+void Simulator::Save(Checkpoint* checkpoint) const {
+  Checkpoint& c = *checkpoint;
+  c.state = state_;
+  c.time = time_;
+  c.diverged = diverged_;
+  c.contacts = contacts_;
+  c.memory = data_.memory;  // the copy assignment reuses the nodes the checkpoint holds
+  c.step = data_.step;
+  c.previous_time_step = data_.previous_time_step;
+  c.time_step = options_.time_step;
+}
+
+void Simulator::Restore(const Checkpoint& checkpoint) {
+  if (checkpoint.state.size() != state_.size()) {
+    throw std::invalid_argument("Simulator::Restore: a checkpoint of a world with " +
+                                std::to_string(checkpoint.state.size()) + " bodies, this one has " +
+                                std::to_string(state_.size()));
+  }
+  state_ = checkpoint.state;
+  time_ = checkpoint.time;
+  diverged_ = checkpoint.diverged;
+  contacts_ = checkpoint.contacts;
+  data_.memory = checkpoint.memory;
+  data_.step = checkpoint.step;
+  data_.previous_time_step = checkpoint.previous_time_step;
+  options_.time_step = checkpoint.time_step;
+}
+
 FrictionSet Simulator::FrictionSetOf(const std::string& name) const {
   const int collider = FindCollider(model_.scene, name);
   if (collider >= 0) return model_.scene.colliders[static_cast<std::size_t>(collider)].law.friction_set;

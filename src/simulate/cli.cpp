@@ -98,6 +98,24 @@ const std::map<std::string, Setter>& ValueOptions() {
          if (!integrator) throw BadValue(o, v, "one of moreau2, moreau");
          c.options.integrator = *integrator;
        }},
+      {"--accuracy",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.accuracy.tolerance = ParseNumber(o, v, 0.0, 1.0, false, false,
+                                            "0 (fixed steps) or a tolerance in [1e-09, 1]");
+         if (c.accuracy.tolerance != 0.0 && c.accuracy.tolerance < 1e-9) {
+           throw BadValue(o, v, "0 (fixed steps) or a tolerance in [1e-09, 1]");
+         }
+       }},
+      {"--min-dt",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.accuracy.min_time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
+                                                "a time step in [1e-07, 0.01] s");
+       }},
+      {"--max-dt",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.accuracy.max_time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
+                                                "a time step in [1e-07, 0.01] s");
+       }},
       {"--dt",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.options.time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
@@ -235,7 +253,14 @@ std::string UsageText() {
        "  --integrator NAME     moreau2 (default): second order without impacts, contacts held\n"
        "                        on position level (docs/theory.md); moreau: the paper's midpoint\n"
        "                        rule (13)-(18) bit for bit, first order\n"
-       "  --gyroscopic SCHEME   (moreau only; moreau2 takes implicit_midpoint) auto (default), explicit (the paper's) or implicit_midpoint;\n"
+       "  --accuracy TOL        choose each step from an error estimate (step doubling) so that\n"
+       "                        the error per second of simulated time stays below TOL, relative\n"
+       "                        to each body's size and speeds (docs/accuracy.md); 0 (default):\n"
+       "                        fixed steps of --dt. CSV rows stay every --decimate x --dt\n"
+       "  --min-dt DT           smallest step of --accuracy [s] (default 1e-6)\n"
+       "  --max-dt DT           largest step of --accuracy [s] (default 2e-3)\n"
+       "  --gyroscopic SCHEME   moreau only (moreau2 takes implicit_midpoint): auto (default),\n"
+       "                        explicit (the paper's) or implicit_midpoint;\n"
        "                        explicit is safe for dt*|omega| <= "
     << kExplicitGyroscopicMaxDtOmega
     << " (warned on stderr\n"
@@ -312,6 +337,9 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
         value = argv[++k];
       }
       option->second(config, arg, value);
+    }
+    if (config.accuracy.min_time_step > config.accuracy.max_time_step) {
+      throw Error{"--min-dt must not exceed --max-dt"};
     }
     if (!config.initial_path.empty() && config.urdf_path.empty()) {
       throw Error{"--initial needs --urdf (the built-in Tippe-Top takes --inclination, --spin)"};

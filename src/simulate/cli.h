@@ -7,6 +7,7 @@
 #include <string>
 #include <variant>
 
+#include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 
@@ -20,11 +21,13 @@ struct RunConfig {
   bool friction_set_given = false;   ///< --friction-set was given (a URDF's own sets otherwise)
   bool mu_given = false;             ///< --mu was given
   bool contact_radius_given = false; ///< --contact-radius was given
-  SimulatorOptions options;          ///< Δt, solver, gyroscopic scheme
+  SimulatorOptions options;          ///< Δt, solver, gyroscopic scheme, integrator
+  /// --accuracy (tolerance 0: fixed steps of options.time_step), --min-dt, --max-dt
+  AccuracyOptions accuracy;
   double duration = 8.0;             ///< [s], > 0
   std::string csv_path;              ///< empty: no CSV
   std::string summary_path;          ///< empty: no JSON summary
-  long decimate = 10;                ///< CSV row every N steps, ≥ 1
+  long decimate = 10;                ///< CSV row every N steps (of --dt with --accuracy), ≥ 1
   bool quiet = false;                ///< no stdout report, no progress bar
 };
 

@@ -2,6 +2,7 @@
 // writes the CSV time series and the JSON summary, reports on stdout.
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "cli.h"
 #include "monitor.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
+#include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/overlaps.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
@@ -157,6 +159,75 @@ void ReportInitialOverlaps(const Simulator& simulator) {
   }
 }
 
+template <typename RecordRow>
+void RunFixed(const RunConfig& config, long steps, Simulator* simulator, RunMonitor* monitor,
+              ProgressBar* progress, const RecordRow& record_row) {
+  const bool record = !config.csv_path.empty();
+  const double dt = config.options.time_step;
+  StepStatistics stats;
+  bool warned = false;
+  for (long step = 1; step <= steps; ++step) {
+    simulator->Step(&stats);
+    const double t = static_cast<double>(step) * dt;
+    if (!stats.state_finite) {
+      monitor->ObserveNonFinite(t);
+      progress->Finish();
+      std::fprintf(stderr,
+                   "simulate: the state became non-finite at t = %.6g s (step %ld of %ld, "
+                   "dt*|omega| = %.3g, gyroscopic %s); stopped at the last finite state, the "
+                   "outputs end there (summary \"state_finite\": false)\n",
+                   t, step, steps, stats.max_dt_omega,
+                   std::string(GyroscopicSchemeName(config.options.gyroscopic)).c_str());
+      break;
+    }
+    if (stats.explicit_gyroscopic_unsafe && !warned) {
+      warned = true;
+      progress->Finish();
+      WarnExplicitGyroscopicUnsafe(stats.max_dt_omega, t, dt);
+    }
+    monitor->Observe(step, t, dt, *simulator, stats);
+    if (record && (step % config.decimate == 0 || step == steps)) record_row(t, stats);
+    progress->Update(step);
+  }
+}
+
+// --accuracy: the adaptive stepper lands on every sample time (decimate x dt) of the CSV
+template <typename RecordRow>
+void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* simulator,
+                 RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
+  const bool record = !config.csv_path.empty();
+  const double sample = static_cast<double>(config.decimate) * config.options.time_step;
+  const long samples = std::max(1L, std::lround(std::ceil(config.duration / sample - 1e-9)));
+  const long steps = std::llround(config.duration / config.options.time_step);
+  long step = 0;
+  bool warned = false;
+  const auto observe = [&](const StepStatistics& s, double h) {
+    ++step;
+    if (s.explicit_gyroscopic_unsafe && !warned) {
+      warned = true;
+      progress->Finish();
+      WarnExplicitGyroscopicUnsafe(s.max_dt_omega, simulator->time(), h);
+    }
+    monitor->Observe(step, simulator->time(), h, *simulator, s);
+  };
+  for (long k = 1; k <= samples; ++k) {
+    const double t = std::min(config.duration, static_cast<double>(k) * sample);
+    const StepStatistics stats = stepper->AdvanceTo(t, observe);
+    if (!stats.state_finite) {
+      monitor->ObserveNonFinite(simulator->time());
+      progress->Finish();
+      std::fprintf(stderr,
+                   "simulate: the state became non-finite near t = %.6g s (adaptive step); "
+                   "stopped at the last finite state, the outputs end there (summary "
+                   "\"state_finite\": false)\n",
+                   simulator->time());
+      break;
+    }
+    if (record) record_row(t, stats);
+    progress->Update(std::min<long>(steps, std::lround(t / config.options.time_step)));
+  }
+}
+
 int Run(const RunConfig& config) {
   Simulator simulator(BuildScene(config), config.options);
   ReportInitialOverlaps(simulator);
@@ -191,33 +262,12 @@ int Run(const RunConfig& config) {
   // the timed loop: steps and per-step monitors; CSV rows are only copied here
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
-  bool warned = false;
-  for (long step = 1; step <= steps; ++step) {
-    simulator.Step(&stats);
-    if (!stats.state_finite) {
-      monitor.ObserveNonFinite(step);
-      progress.Finish();
-      std::fprintf(stderr,
-                   "simulate: the state became non-finite at t = %.6g s (step %ld of %ld, "
-                   "dt*|omega| = %.3g, gyroscopic %s); stopped at the last finite state, the "
-                   "outputs end there (summary \"state_finite\": false)\n",
-                   static_cast<double>(step) * config.options.time_step, step, steps,
-                   stats.max_dt_omega,
-                   std::string(GyroscopicSchemeName(config.options.gyroscopic)).c_str());
-      break;
-    }
-    if (stats.explicit_gyroscopic_unsafe && !warned) {
-      warned = true;
-      progress.Finish();
-      WarnExplicitGyroscopicUnsafe(stats.max_dt_omega,
-                                   static_cast<double>(step) * config.options.time_step,
-                                   config.options.time_step);
-    }
-    monitor.Observe(step, simulator, stats);
-    if (record && (step % config.decimate == 0 || step == steps)) {
-      record_row(static_cast<double>(step) * config.options.time_step, stats);
-    }
-    progress.Update(step);
+  if (config.accuracy.tolerance > 0.0) {
+    AdaptiveStepper stepper(&simulator, config.accuracy);
+    RunAdaptive(config, &stepper, &simulator, &monitor, &progress, record_row);
+    monitor.SetAdaptive(stepper.statistics());
+  } else {
+    RunFixed(config, steps, &simulator, &monitor, &progress, record_row);
   }
   const auto stop = std::chrono::steady_clock::now();
   const double cpu_time = ThreadCpuSeconds() - cpu_start;

@@ -36,7 +36,7 @@ double VerticalSpin(const BodyState& state) {
 }
 
 RunMonitor::RunMonitor(const RunConfig& config, const Simulator& simulator)
-    : tippe_top_(config.urdf_path.empty()), time_step_(simulator.options().time_step) {
+    : tippe_top_(config.urdf_path.empty()) {
   summary_.config = config;
   summary_.tippe_top = tippe_top_;
   const BodyState& s = simulator.state()[0];
@@ -51,8 +51,8 @@ RunMonitor::RunMonitor(const RunConfig& config, const Simulator& simulator)
   energy_previous_ = summary_.energy_initial;
 }
 
-void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatistics& stats) {
-  const double t = static_cast<double>(step) * time_step_;
+void RunMonitor::Observe(long step, double t, double dt, const Simulator& simulator,
+                         const StepStatistics& stats) {
   const BodyState& s = simulator.state()[0];
   const auto& contacts = simulator.contacts();
 
@@ -80,7 +80,7 @@ void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatis
     if (peg) SetOnce(&summary_.t_peg_touchdown, t);
     if (peg && !big) {
       SetOnce(&summary_.t_big_sphere_liftoff, t);
-      ++peg_only_steps_;
+      peg_only_time_ += dt;
     }
     if (big && summary_.t_theta_above_2_9) SetOnce(&summary_.t_fall_back, t);
   }
@@ -107,9 +107,9 @@ void RunMonitor::Observe(long step, const Simulator& simulator, const StepStatis
   summary_.steps = step;
 }
 
-void RunMonitor::ObserveNonFinite(long step) {
+void RunMonitor::ObserveNonFinite(double t) {
   summary_.state_finite = false;
-  summary_.t_non_finite = static_cast<double>(step) * time_step_;
+  summary_.t_non_finite = t;
 }
 
 RunSummary RunMonitor::Finish(const Simulator& simulator) {
@@ -129,7 +129,7 @@ RunSummary RunMonitor::Finish(const Simulator& simulator) {
     summary_.final_link_position.push_back(state.position - state.orientation * body.com_in_link);
     summary_.final_state.push_back(state);
   }
-  summary_.time_on_peg_s = static_cast<double>(peg_only_steps_) * time_step_;
+  summary_.time_on_peg_s = peg_only_time_;
   summary_.mean_iterations =
       summary_.steps > 0 ? static_cast<double>(total_iterations_) / summary_.steps : 0.0;
   if (summary_.steps == 0) summary_.max_energy_increase = 0.0;

@@ -25,7 +25,9 @@ struct RunSummary {
   std::vector<std::string> body_names;
   std::vector<Eigen::Vector3d> final_link_position;
   std::vector<BodyState> final_state;
-  long steps = 0;
+  long steps = 0;  ///< accepted steps (with --accuracy: steps of H, each two half steps)
+  /// --accuracy: the stepper's counts (accepted/rejected/forced steps, smallest step, error)
+  std::optional<AdaptiveStatistics> adaptive;
   double wall_time_s = 0.0;         ///< stepping and per-step monitors, no file output [s]
   double cpu_time_s = 0.0;          ///< thread CPU time of the same loop [s]
   double output_wall_time_s = 0.0;  ///< formatting and writing CSV [s]
@@ -72,20 +74,21 @@ struct RunSummary {
 class RunMonitor {
  public:
   RunMonitor(const RunConfig& config, const Simulator& simulator);
-  /// After every step taken (stats.state_finite).
-  void Observe(long step, const Simulator& simulator, const StepStatistics& stats);
-  /// The step `step` met a non-finite value and was not taken.
-  void ObserveNonFinite(long step);
+  /// After every step taken (stats.state_finite): the `step`-th, ending at time t, of size dt.
+  void Observe(long step, double t, double dt, const Simulator& simulator,
+               const StepStatistics& stats);
+  /// The step ending at t met a non-finite value and was not taken.
+  void ObserveNonFinite(double t);
   RunSummary Finish(const Simulator& simulator);
+  void SetAdaptive(const AdaptiveStatistics& statistics) { summary_.adaptive = statistics; }
 
  private:
   RunSummary summary_;
   bool tippe_top_;
-  double time_step_;
   double energy_previous_;
   double min_cos_theta_;
   long total_iterations_ = 0;
-  long peg_only_steps_ = 0;
+  double peg_only_time_ = 0.0;  // [s]
 };
 
 /// Decimated CSV rows, stored as numbers during the run and formatted afterwards.

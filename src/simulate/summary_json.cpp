@@ -115,6 +115,22 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   // extras
   json.Add("gyroscopic", std::string(GyroscopicSchemeName(c.options.gyroscopic)));
   json.Add("integrator", std::string(IntegratorName(c.options.integrator)));
+  // --accuracy (0: fixed steps): the step-size control's counts
+  json.Add("accuracy", c.accuracy.tolerance);
+  if (s.adaptive) {
+    const AdaptiveStatistics& a = *s.adaptive;
+    json.Add("min_dt", c.accuracy.min_time_step);
+    json.Add("max_dt", c.accuracy.max_time_step);
+    json.Add("accepted_steps", a.accepted_steps);
+    json.Add("rejected_steps", a.rejected_steps);
+    json.Add("forced_steps", a.forced_steps);
+    json.Add("simulator_steps", a.simulator_steps);
+    json.Add("smallest_step", a.accepted_steps > 0 ? a.smallest_step : 0.0);
+    json.Add("largest_step", a.largest_step);
+    json.Add("max_error_estimate", a.max_error);
+    json.Add("mean_error_estimate",
+             a.accepted_steps > 0 ? a.error_sum / static_cast<double>(a.accepted_steps) : 0.0);
+  }
   json.Add("tolerance_rel", c.options.solver.tolerance_rel);
   json.Add("tolerance_abs", c.options.solver.tolerance_abs);
   json.Add("solver_max_iterations", c.options.solver.max_iterations);

@@ -134,6 +134,29 @@ class Simulator {
   void SetTime(double time);
   /// Validated like the constructor; throws and changes nothing on bad input.
   void SetOptions(const SimulatorOptions& options);
+  /// The time step alone (validated as in SetOptions), between two steps. Unlike SetOptions, the
+  /// contacts' warm starts are kept, scaled by the ratio (a percussion is a force times Δt): for
+  /// a stepper that changes Δt every step (AdaptiveStepper).
+  void SetTimeStep(double time_step);
+
+  /// Everything a step changes, and the time step: state, time, diverged(), the contacts' memory
+  /// (its warm starts are for that time step) and report. Restore
+  /// needs the same world (no AddBodies / RemoveBodies in between). Once a checkpoint has held as
+  /// many contacts as the simulator has, Save allocates nothing (the copies reuse its storage).
+  struct Checkpoint {
+    std::vector<BodyState> state;
+    double time = 0.0;
+    bool diverged = false;
+    std::vector<ContactState> contacts;
+    ContactMemoryMap memory;
+    long step = 0;
+    double previous_time_step = 0.0;
+    double time_step = 0.0;
+  };
+  void Save(Checkpoint* checkpoint) const;
+  /// Back to a saved checkpoint; throws std::invalid_argument (nothing changed) if it is of a
+  /// world with another number of bodies.
+  void Restore(const Checkpoint& checkpoint);
   /// Switches the friction set of every contact (name empty), of every contact of one collider
   /// (name = a collider's name) or of one contact (name = ContactName, "<first>/<second>"). The
   /// state is kept, the warm start of changed contacts dropped. Throws std::invalid_argument for an

@@ -80,14 +80,15 @@ inline Eigen::Vector4d QuadraticStart(const ContactMemory& m) {
 }
 
 /// Integrator::kMoreau2 holds a persistent contact on position level: its normal law acts on
-/// γ_N(q_E) + β max(g(q_B), -d)/Δt, so that a gap or a shallow penetration g(q_B) left by the last
-/// step decays by the factor 1 - β per step instead of drifting (the per-step drift is O(Δt³), so
-/// the term stays O(Δt²) in the velocity). docs/theory.md.
-inline constexpr double kPositionGain = 0.2;
+/// γ_N(q_E) + max(g(q_B), -d)/τ, τ = max(kPositionTimeConstant, Δt), so that a gap or a shallow
+/// penetration g(q_B) left by the last step decays at the rate 1/τ instead of drifting (the
+/// drift is O(Δt²) per unit time, so the term stays O(Δt²) in the velocity). A rate, not a
+/// fraction per step: steps of Δt and Δt/2 hold a contact alike (AdaptiveStepper compares them).
+/// docs/theory.md.
+inline constexpr double kPositionTimeConstant = 2e-3;  // [s]
 /// d [m]: the deepest penetration the position term pushes out at its full rate. An impact leaves
-/// its contact up to |γ_N|Δt/2 deep; pushed out at β g/Δt, that is a bounce of β|γ_N|/2 whatever
-/// Δt (a die landing at 0.5 m/s came off the floor again). Deeper than d, the term pushes at
-/// β d/Δt (2e-5 m/s at Δt = 1e-4) and the gap correction lifts what is below its slop (1 µm).
+/// its contact up to |γ_N|Δt/2 deep; pushed out at g/τ, that would be a bounce; deeper than d,
+/// the term pushes at d/τ (5e-6 m/s) and the gap correction lifts what is below its slop (1 µm).
 inline constexpr double kPositionHoldDepth = 1e-8;
 
 /// c_i of Integrator::kMoreau2 (docs/theory.md, "The second-order integrator"). A contact that
@@ -114,7 +115,8 @@ inline constexpr double kPositionHoldDepth = 1e-8;
   Eigen::Vector4d shift = (dt / (dt + previous_dt)) * (c.gamma_begin - memory.gamma_end);
   if (c.friction_midpoint) shift.tail<3>() = c.gamma_begin.tail<3>();
   if (std::isfinite(memory.gap_end)) {
-    shift(kNormal) += (kPositionGain / dt) * std::max(memory.gap_end, -kPositionHoldDepth);
+    shift(kNormal) += std::max(memory.gap_end, -kPositionHoldDepth) /
+                      std::max(kPositionTimeConstant, dt);
   }
   return velocity + shift;
 }

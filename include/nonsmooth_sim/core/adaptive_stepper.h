@@ -1,0 +1,84 @@
+// The accuracy knob: a Simulator advanced by steps chosen from an error estimate, instead of a
+// fixed Δt (docs/accuracy.md).
+//
+// Each step of size H is taken twice from the same start, once as one step of H and once as two
+// steps of H/2 (step doubling, Simulator::Save / Restore); the two half steps are kept. For a
+// scheme of order p the difference of the two estimates the error of the half steps,
+//   err ≈ ‖y_{H/2,H/2} - y_H‖ / (2^p - 1),   p = 2 (Integrator::kMoreau2), 1 (kMoreau)
+// in a norm scaled per body (size L from its colliders, g the gravity):
+//   ‖Δ‖ = max over bodies of max(|Δr_S| / L, angle(Δp), |Δv_S| / v_ref, |Δω| / ω_ref),
+//   v_ref = max(|v_S|, √(gL)),  ω_ref = max(|ω|, √(g/L))        (√(gL), √(g/L): 1 if g = 0)
+// The step is accepted if err ≤ TOL · H / (1 s): the error made per second of simulated time is
+// at most TOL, so that the error at a fixed time grows with TOL, not with the number of steps.
+// The next step is H · clamp(0.9 (TOL·H/err)^{1/p}, 0.2, 2), within [min, max]; a rejected
+// step is tried again from the start with that H. A change of the contact state within a step
+// (a contact closing or opening, stick ↔ slip, an impact) is first order whatever the scheme:
+// its error does not fall as H^{p+1}, so the step shrinks until the change is localised to the
+// smallest step, which is then accepted (counted in AdaptiveStatistics::forced_steps).
+#ifndef NONSMOOTH_SIM_CORE_ADAPTIVE_STEPPER_H_
+#define NONSMOOTH_SIM_CORE_ADAPTIVE_STEPPER_H_
+
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "nonsmooth_sim/core/simulator.h"
+
+namespace nonsmooth_sim {
+
+struct AccuracyOptions {
+  /// TOL: the estimated error per second of simulated time, relative to the scales above, in
+  /// [1e-9, 1]; 0 = fixed steps of SimulatorOptions::time_step
+  double tolerance = 0.0;
+  double min_time_step = 1e-6;  ///< [s], in [1e-7, 1e-2], ≤ max_time_step
+  double max_time_step = 2e-3;  ///< [s], in [1e-7, 1e-2]
+};
+/// Throws std::invalid_argument naming the field and its allowed range.
+void ValidateAccuracyOptions(const AccuracyOptions& options);
+
+struct AdaptiveStatistics {
+  long accepted_steps = 0;  ///< steps of H kept (each taken as two half steps)
+  long rejected_steps = 0;  ///< steps tried and taken again smaller
+  long forced_steps = 0;    ///< accepted at min_time_step with err above TOL·H
+  long simulator_steps = 0; ///< Simulator::Step calls, rejected ones included (the cost)
+  double smallest_step = std::numeric_limits<double>::infinity();  ///< [s], accepted H
+  double largest_step = 0.0;                                        ///< [s]
+  /// the largest and the summed err of accepted steps (as TOL is defined above)
+  double max_error = 0.0;
+  double error_sum = 0.0;
+};
+
+class AdaptiveStepper {
+ public:
+  /// `simulator` must outlive the stepper; its time step is changed by the stepper.
+  AdaptiveStepper(Simulator* simulator, const AccuracyOptions& options);
+
+  /// Advances the simulator to time t_end (its last step shortened to land on it); calls
+  /// `accepted` after every accepted step with the statistics of its second half step and its
+  /// H). Stops early if a step meets a non-finite value (the simulator's
+  /// diverged()). Returns the statistics of the last step.
+  StepStatistics AdvanceTo(double t_end,
+                           const std::function<void(const StepStatistics&, double h)>& accepted);
+
+  const AdaptiveStatistics& statistics() const { return statistics_; }
+  const AccuracyOptions& options() const { return options_; }
+  /// The step the next AdvanceTo starts with [s].
+  double next_step() const { return next_step_; }
+
+ private:
+  // err of the state now against end_single_ (scaled as above), per the scheme's order
+  double ErrorEstimate() const;
+  void UpdateScales();
+
+  Simulator* simulator_;
+  AccuracyOptions options_;
+  AdaptiveStatistics statistics_;
+  double next_step_;
+  Simulator::Checkpoint start_;
+  std::vector<BodyState> end_single_;   // y_H
+  std::vector<double> size_;            // per body: L [m]
+};
+
+}  // namespace nonsmooth_sim
+
+#endif  // NONSMOOTH_SIM_CORE_ADAPTIVE_STEPPER_H_
