@@ -17,6 +17,7 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "scene_builders.h"
+#include "same_bits.h"
 
 namespace nonsmooth_sim {
 namespace {
@@ -72,21 +73,7 @@ bool Finite(const std::vector<BodyState>& state) {
   return true;
 }
 
-bool SameBits(const std::vector<BodyState>& a, const std::vector<BodyState>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::memcmp(a[i].position.data(), b[i].position.data(), 3 * sizeof(double)) != 0 ||
-        std::memcmp(a[i].orientation.coeffs().data(), b[i].orientation.coeffs().data(),
-                    4 * sizeof(double)) != 0 ||
-        std::memcmp(a[i].linear_velocity.data(), b[i].linear_velocity.data(),
-                    3 * sizeof(double)) != 0 ||
-        std::memcmp(a[i].angular_velocity.data(), b[i].angular_velocity.data(),
-                    3 * sizeof(double)) != 0) {
-      return false;
-    }
-  }
-  return true;
-}
+using test::SameBits;
 
 // The contract of a step (fuzz_support.h): finite, or the reported fault with nothing changed.
 void ExpectFiniteOrFault(const Simulator& sim, const StepStatistics& stats,

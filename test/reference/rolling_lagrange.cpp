@@ -2,14 +2,9 @@
 #include "rolling_lagrange.h"
 
 #include <array>
-// GCC 12 warns (-W[maybe-]uninitialized) inside odeint when its steppers, whose scratch arrays
-// are filled only on first use, are copied: a false positive in the header, not in our code.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <boost/numeric/odeint.hpp>
-#pragma GCC diagnostic pop
 #include <stdexcept>
+
+#include "reference/odeint.h"
 
 namespace nonsmooth_sim::reference {
 namespace {
