@@ -179,7 +179,9 @@ void Simulator::Step(StepStatistics* out) {
     contacts_[i] = c.report;
     if (data_.second_order) c.memory->gamma_end = c.report.relative_velocity;
   }
-  data_.previous_time_step = options_.time_step;
+  // kMoreau2 reads the last step's γ_E and end gaps only if that step recorded them (a run
+  // switched from kMoreau takes its first kMoreau2 step with every contact as a new one)
+  data_.previous_time_step = data_.second_order ? options_.time_step : 0.0;
   ++data_.step;
 }
 

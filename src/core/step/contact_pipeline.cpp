@@ -102,7 +102,8 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
   const bool pair_was_closed = pair_memory != nullptr && pair_memory->closed_step == step - 1;
   const double max_gap = pair_was_closed ? kContactHysteresis : 0.0;
   // kMoreau2: a feature closed in the last step also while g(q_B) ≤ kPersistentContactGap
-  const bool persistent = pair_was_closed && data->second_order;
+  const bool persistent =
+      pair_was_closed && data->second_order && data->previous_time_step > 0.0;
   // points up to the hysteresis gap (the margin for persistent ones): the index set below
   // decides which close
   const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,

@@ -105,7 +105,8 @@ inline constexpr double kPositionHoldDepth = 1e-8;
     const std::vector<BodyStep>& body, const ClosedContact& c, double dt, double previous_dt,
     long step) {
   const ContactMemory& memory = *c.memory;
-  if (memory.closed_step != step - 1) return FreeContactVelocity(body, c);
+  // closed in the last step, and that step recorded γ_E and g(q_E) (a kMoreau2 step)
+  if (memory.closed_step != step - 1 || !(previous_dt > 0.0)) return FreeContactVelocity(body, c);
   Eigen::Vector4d velocity = Eigen::Vector4d::Zero();
   for (const ContactSide& side : c.jacobian.side) {
     if (side.body < 0) continue;

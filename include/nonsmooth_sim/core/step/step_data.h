@@ -68,7 +68,9 @@ struct StepData {
   long step = 0;          ///< steps taken: the clock of ContactMemory's closing steps
   bool implicit = false;  ///< this step uses the implicit midpoint rule (ComputeMidpoints)
   bool second_order = false;  ///< this step is Integrator::kMoreau2's
-  double previous_time_step = 0.0;  ///< Δt of the last step taken [s] (kMoreau2)
+  /// Δt of the last step taken if it was kMoreau2's (its γ_E and end gaps are in the memory),
+  /// else 0 [s]
+  double previous_time_step = 0.0;
 
   /// Sizes the per-body and per-collider arrays for `model` (keeps the memory); no closed
   /// contact.
