@@ -31,7 +31,6 @@ import hashlib
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -42,6 +41,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
+
+# simulate's JSON summaries with inf/nan read as numbers (this folder is on sys.path)
+from tradeoff_report import load_json  # noqa: E402
 
 DTS = {
     "moreau": [1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5],
@@ -157,15 +159,6 @@ def sha1_of(path):
     with open(path, "rb") as f:
         h.update(f.read())
     return h.hexdigest()
-
-
-def load_json(path):
-    """simulate writes inf/nan as bare words when a run blew up: read them as numbers."""
-    with open(path) as f:
-        text = f.read()
-    text = re.sub(r"(?<=[:\s])(-?)inf\b", r"\1Infinity", text)
-    text = re.sub(r"(?<=[:\s])-?nan\b", "NaN", text)
-    return json.loads(text)
 
 
 def read_csv(path):
@@ -563,14 +556,16 @@ def main():
                         help="a reduced set (moreau at 1e-3, 1e-4, 1e-5; moreau2 at 1e-3, 1e-4; "
                              "the disc for 10 s; no repeated timing)")
     parser.add_argument("--out", default=None, help="cache and report (default out/work_precision)")
-    parser.add_argument("--docs", default=None, help="where the PNGs go (default docs/)")
+    parser.add_argument("--docs", default=None,
+                        help="where the PNGs go (default docs/; with --quick the --out folder, so "
+                             "that a reduced study never replaces the figures of docs/)")
     parser.add_argument("--rerun", action="store_true", help="ignore cached runs")
     parser.add_argument("--command", default="scripts/work_precision", help="for the header")
     parser.add_argument("--cpu", type=int, default=1, help="taskset core (-1: no pinning)")
     args = parser.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     args.out = args.out or os.path.join(root, "out", "work_precision")
-    args.docs = args.docs or os.path.join(root, "docs")
+    args.docs = args.docs or (args.out if args.quick else os.path.join(root, "docs"))
     os.makedirs(args.out, exist_ok=True)
     os.makedirs(args.docs, exist_ok=True)
     if shutil_which("taskset") is None:
