@@ -94,12 +94,15 @@ TEST_F(NodeStep, StepAdvancesByWholeTimeStepsAndPublishesTf) {
     EXPECT_EQ(gap.toNSec(), Nanoseconds(tf_period * dt)) << i;
   }
   EXPECT_LE(messages.back().transforms[0].header.stamp, second.response.stamp);
-  // batched: the first call's samples (one chunk) fill messages of ~max_samples_per_message
-  // stamps, and no message carries more
+  // batched: messages carry several stamps, never more than ~max_samples_per_message. A step call
+  // runs in chunks of bounded wall time and sends what a chunk sampled at its end, so how full the
+  // largest message is depends on the machine's speed (a sanitizer build fills fewer stamps)
   int max_samples = 0;
   ASSERT_TRUE(nh_.getParam(kNode + "max_samples_per_message", max_samples));
   ASSERT_GT(expected, static_cast<std::size_t>(max_samples));
-  EXPECT_EQ(tf.LargestMessage(), static_cast<std::size_t>(max_samples));
+  EXPECT_LE(tf.LargestMessage(), static_cast<std::size_t>(max_samples));
+  EXPECT_GE(tf.LargestMessage(), 2u);
+  EXPECT_LT(tf.MessageCount(), expected);
   EXPECT_GE(tf.MessageCount(), (expected + max_samples - 1) / max_samples);
 
   // paused again: nothing more
