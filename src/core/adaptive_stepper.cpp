@@ -65,21 +65,19 @@ void AdaptiveStepper::UpdateScales() {
   }
 }
 
-double AdaptiveStepper::ErrorEstimate() const {
+double AdaptiveStepper::ErrorEstimate(double h) const {
   const std::vector<BodyState>& now = simulator_->state();
-  const double g = simulator_->scene().gravity.norm();
   double worst = 0.0;
   for (std::size_t b = 0; b < now.size(); ++b) {
     const BodyState& x = now[b];
     const BodyState& y = end_single_[b];
     const double size = size_[b];
-    const double v_ref = std::max(x.linear_velocity.norm(), g > 0.0 ? std::sqrt(g * size) : 1.0);
-    const double w_ref = std::max(x.angular_velocity.norm(), g > 0.0 ? std::sqrt(g / size) : 1.0);
-    // the orientation itself is left out: the phase of a fast spin is irrelevant to every event
-    // of a top, and its error shows in ω (body axes) wherever it matters
+    // velocities as the displacement they make over the step (header: index-2 components); the
+    // orientation is left out: the phase of a fast spin is irrelevant to every event of a top,
+    // and the error of the rotation's axis shows in ω·H
     worst = std::max({worst, (x.position - y.position).norm() / size,
-                      (x.linear_velocity - y.linear_velocity).norm() / v_ref,
-                      (x.angular_velocity - y.angular_velocity).norm() / w_ref});
+                      (x.linear_velocity - y.linear_velocity).norm() * h / size,
+                      (x.angular_velocity - y.angular_velocity).norm() * h});
   }
   // Richardson: the half steps' error is the difference over 2^p - 1
   const bool second_order = simulator_->options().integrator == Integrator::kMoreau2;
@@ -125,7 +123,7 @@ StepStatistics AdaptiveStepper::AdvanceTo(
     statistics_.simulator_steps += 2;
     if (!stats.state_finite) return stats;  // diverged: the simulator stays stopped
     const bool single_finite = end_single_.size() == simulator_->state().size();
-    const double error = single_finite ? ErrorEstimate() : std::numeric_limits<double>::infinity();
+    const double error = single_finite ? ErrorEstimate(h) : std::numeric_limits<double>::infinity();
     const double allowed = options_.tolerance * h;  // TOL per second of simulated time
     const double ratio = error / allowed;
     double factor = ratio > 0.0 ? kSafety * std::pow(ratio, -1.0 / order) : kMaxFactor;

@@ -258,7 +258,7 @@ std::string UsageText() {
        "                        to each body's size and speeds (docs/accuracy.md); 0 (default):\n"
        "                        fixed steps of --dt. CSV rows stay every --decimate x --dt\n"
        "  --min-dt DT           smallest step of --accuracy [s] (default 1e-6)\n"
-       "  --max-dt DT           largest step of --accuracy [s] (default 2e-3)\n"
+       "  --max-dt DT           largest step of --accuracy [s] (default 1e-2)\n"
        "  --gyroscopic SCHEME   moreau only (moreau2 takes implicit_midpoint): auto (default),\n"
        "                        explicit (the paper's) or implicit_midpoint;\n"
        "                        explicit is safe for dt*|omega| <= "

@@ -191,12 +191,16 @@ void RunFixed(const RunConfig& config, long steps, Simulator* simulator, RunMoni
   }
 }
 
-// --accuracy: the adaptive stepper lands on every sample time (decimate x dt) of the CSV
+// --accuracy: the adaptive stepper lands on every sample time (decimate x dt) of the CSV; without
+// a CSV, every kProgressInterval only (a landing shortens one step), so that the sample time does
+// not cap the step
+constexpr double kProgressInterval = 0.1;  // [s] of simulated time
 template <typename RecordRow>
 void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* simulator,
                  RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
   const bool record = !config.csv_path.empty();
-  const double sample = static_cast<double>(config.decimate) * config.options.time_step;
+  const double csv_sample = static_cast<double>(config.decimate) * config.options.time_step;
+  const double sample = record ? csv_sample : std::max(csv_sample, kProgressInterval);
   const long samples = std::max(1L, std::lround(std::ceil(config.duration / sample - 1e-9)));
   const long steps = std::llround(config.duration / config.options.time_step);
   long step = 0;

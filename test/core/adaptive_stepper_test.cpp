@@ -1,13 +1,11 @@
 // The accuracy knob (adaptive_stepper.h) and what it stands on (Simulator::Save / Restore,
 // SetTimeStep): a restored checkpoint steps on bit for bit; the stepper lands on the requested
-// times, keeps its accepted error estimates within TOL·H, and its error against closed forms
-// falls with TOL.
+// times and keeps its accepted error estimates within TOL·H (its error against references:
+// test/scenes/accuracy_knob_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <functional>
 
 #include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
@@ -107,45 +105,7 @@ TEST(AdaptiveStepper, LandsOnTheRequestedTimesWithAcceptedErrorsWithinTolerance)
   EXPECT_LE(sim.options().solver.tolerance_rel, 1e-4);
 }
 
-// The first step that ends with the Tippe-Top's peg contact closed [s].
-double PegTouchdown(Simulator* sim, const std::function<void(double)>& advance) {
-  for (int k = 1; k <= 2000; ++k) {
-    advance(1e-3 * k);
-    if (sim->InContact(kPegSphere)) return sim->time();
-  }
-  return -1.0;
-}
-
-TEST(AdaptiveStepper, TippeTopTouchesDownInTheSampleOfTheConvergedTime) {
-  // the converged time: moreau2 at a fixed Δt = 1e-5, whose error is below 1e-5 s
-  // (second_order_test holds moreau2 to Moreau's extrapolated limit)
-  SimulatorOptions fine = Moreau2();
-  fine.time_step = 1e-5;
-  Simulator reference(MakeTippeTopScene(), fine);
-  const double t_ref =
-      PegTouchdown(&reference, [&](double t) {
-        while (reference.time() < t - 0.5 * fine.time_step) reference.Step();
-      });
-  ASSERT_GT(t_ref, 1.0);
-  for (double tolerance : {1e-2, 1e-3}) {
-    Simulator sim(MakeTippeTopScene(), Moreau2());
-    AccuracyOptions options;
-    options.tolerance = tolerance;
-    AdaptiveStepper stepper(&sim, options);
-    // the event is seen at the 1 ms samples: the step that closes the peg ends before the sample
-    const double t = PegTouchdown(&sim, [&](double t_end) {
-      stepper.AdvanceTo(t_end, [&](const StepStatistics&, double) {});
-    });
-    ASSERT_GT(t, 1.0);
-    // the first sample after the touchdown: within one sample of the converged time
-    std::printf("TOL %g: touchdown seen at %.4f s (converged %.5f s), %ld steps (%ld rejected)\n",
-                tolerance, t, t_ref, stepper.statistics().accepted_steps,
-                stepper.statistics().rejected_steps);
-    EXPECT_GE(t, t_ref - 1e-9);
-    EXPECT_LT(t - t_ref, 1e-3 + 1e-9);
-    EXPECT_LE(stepper.statistics().forced_steps, stepper.statistics().accepted_steps / 100);
-  }
-}
+// The knob's honesty against references: test/scenes/accuracy_knob_test.cpp.
 
 }  // namespace
 }  // namespace nonsmooth_sim

@@ -902,7 +902,9 @@ void ExpectNoAllocationOnceWarm(Integrator integrator) {
   }
   // (moreau2 keeps the ball's contact closed through the hand-over: no step without one)
   ASSERT_TRUE(warm_sizes[1] && warm_sizes[2]);
-  if (integrator == Integrator::kMoreau) ASSERT_TRUE(warm_sizes[0]);
+  if (integrator == Integrator::kMoreau) {
+    ASSERT_TRUE(warm_sizes[0]);
+  }
   ASSERT_TRUE(warm_pairs[0] && warm_pairs[1]);
   const long before = test::HeapAllocations();
   bool sizes[3] = {false, false, false};

@@ -18,6 +18,7 @@
 
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "reference/rolling_reference.h"
+#include "rolling_scene.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
@@ -25,6 +26,9 @@ namespace {
 
 using scene_test::kPi;
 using scene_test::LoadShippedScene;
+using scene_test::RattlebackReferenceStart;
+using scene_test::RollingScene;
+using scene_test::VerticalSpin;
 
 constexpr double kDefaultStep = 1e-4;  // [s], SimulatorOptions' and simulate's default
 
@@ -36,20 +40,7 @@ SimulatorOptions Options(Integrator integrator) {
 }
 
 // No slip, no drilling: the rolling the references describe.
-Scene RollingScene(const std::string& name) {
-  scene_io::UrdfSceneOptions options;
-  options.mu = 10.0;
-  options.contact_radius = 0.0;
-  options.friction_set = FrictionSet::kCoulomb;
-  Scene scene = LoadShippedScene(name, options);
-  for (Collider& c : scene.colliders) {
-    if (c.body != kWorld) c.law.friction_set = FrictionSet::kCoulomb;
-  }
-  return scene;
-}
-
 Eigen::Vector3d E3(const BodyState& s) { return s.orientation * Eigen::Vector3d::UnitZ(); }
-double VerticalSpin(const BodyState& s) { return (s.orientation * s.angular_velocity).z(); }
 
 // ---------------------------------------------------------------------------------------------
 // Euler's disk
@@ -118,15 +109,6 @@ TEST(SecondOrder, MoreauClimbsAndGainsEnergyAtTheSameStep) {
 // ---------------------------------------------------------------------------------------------
 // The rattleback
 
-// The reference's start for a simulator started from `s`: the shipped start slips, and the
-// first step (μ = 10) sticks it impulsively, keeping the angular momentum about the contact point
-// (StickingImpulseStart; a rolling start is left as it is).
-reference::RollingState ReferenceStart(const BodyState& s) {
-  return reference::StickingImpulseStart(reference::Rattleback(), s.orientation,
-                                         s.angular_velocity, s.linear_velocity,
-                                         s.position.head<2>());
-}
-
 struct Reversal {
   std::optional<double> first;  // the first time the vertical spin turns from < 0 to ≥ 0 [s]
   double spin_end = 0.0;        // [rad/s]
@@ -150,7 +132,7 @@ Reversal RunRattleback(Simulator* sim, double duration) {
 
 TEST(SecondOrder, RattlebackReversesWithTheRollingReference) {
   const Scene scene = RollingScene("rattleback");
-  const reference::RollingState start = ReferenceStart(scene.initial_state[0]);
+  const reference::RollingState start = RattlebackReferenceStart(scene.initial_state[0]);
   const reference::RollingBody body = reference::Rattleback();
   const std::optional<double> t_ref = reference::FirstSpinReversal(body, start, 8.0);
   const double spin_ref = reference::Integrate(body, start, {8.0})[0].OmegaWorld().z();
