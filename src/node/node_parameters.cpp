@@ -149,6 +149,12 @@ void ValidateNodeParameters(const NodeParameters& p) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("parameters: ") + e.what());
   }
+  try {
+    ValidateAccuracyOptions(p.accuracy);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("parameters ~accuracy (tolerance), ~min_dt, ~max_dt: ") +
+                                e.what());
+  }
   if (!(p.real_time_factor >= 0.0)) {
     throw std::invalid_argument("parameter ~real_time_factor: must be >= 0 (0 = as fast as "
                                 "possible), got " + std::to_string(p.real_time_factor));
@@ -237,6 +243,9 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   p.simulator.integrator = *integrator;
   r.Bool("gap_correction", &p.simulator.gap_correction);
   r.Bool("extrapolate_warm_start", &p.simulator.extrapolate_warm_start);
+  r.Number("accuracy", &p.accuracy.tolerance);
+  r.Number("min_dt", &p.accuracy.min_time_step);
+  r.Number("max_dt", &p.accuracy.max_time_step);
 
   // initial conditions
   p.initial_state = ReadInitialState(r);

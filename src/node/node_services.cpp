@@ -102,15 +102,17 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     const Clock::time_point deadline =
         start + std::chrono::duration_cast<Clock::duration>(
                     std::chrono::duration<double>(kStepChunkWall));
+    std::uint32_t calls = 0;
     while (done < req.steps) {
       const double before = sim_->time();
-      StepOnce();
-      if (sim_->time() == before) {
+      const std::int64_t ticks = StepOnce(req.steps - done);
+      if (sim_->time() == before || !fault_.empty()) {
         failed = true;
         break;
       }
-      ++done;
-      if (done % kStepWallCheck == 0 && Clock::now() > deadline) break;
+      done += static_cast<std::uint32_t>(ticks);
+      // ticks > 1: ~accuracy took several steps in this call
+      if ((++calls % kStepWallCheck == 0 || ticks > 1) && Clock::now() > deadline) break;
     }
     FinishChunk(start);  // the chunk's samples sent, ~duration's log line if reached in it
     if (failed || done == req.steps) break;
@@ -142,8 +144,8 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     return true;
   }
   res.success = true;
-  res.status_message = "stepped " + std::to_string(req.steps) + " x " +
-                       std::to_string(sim_->options().time_step) + " s";
+  res.status_message = "stepped " + std::to_string(req.steps) + " x " + std::to_string(tick_) +
+                       " s";
   return true;
 }
 
@@ -208,6 +210,11 @@ bool SimulationNode::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empt
     sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
     sim_->SetTime(time);
   }
+  // the configured solver and accuracy, as the fresh simulator's
+  tick_ = parameters_.simulator.time_step;
+  solver_tolerance_ = parameters_.simulator.solver.tolerance_rel;
+  accuracy_ = parameters_.accuracy;
+  ResetStepper();
   last_step_ = StepStatistics();
   total_ = RunStatistics();
   UpdatePeriods();
@@ -269,14 +276,17 @@ bool SimulationNode::OnGetSolverProperties(GetSolverProperties::Request&,
                                            GetSolverProperties::Response& res) {
   const auto lock = LockForService();
   const SimulatorOptions& o = sim_->options();
-  res.time_step = o.time_step;
+  res.time_step = tick_;  // sim_'s changes at every step with ~accuracy
   res.solver = std::string(SolverTypeName(o.solver.type));
-  res.tolerance = o.solver.tolerance_rel;
+  res.tolerance = solver_tolerance_;  // as asked (~accuracy lowers the solver's to TOL/100)
   res.tolerance_abs = o.solver.tolerance_abs;
   res.max_iterations = o.solver.max_iterations;
   res.relaxation = o.solver.relaxation;
   res.gyroscopic = std::string(GyroscopicSchemeName(o.gyroscopic));
   res.integrator = std::string(IntegratorName(o.integrator));
+  res.accuracy = accuracy_.tolerance;
+  res.min_dt = accuracy_.min_time_step;
+  res.max_dt = accuracy_.max_time_step;
   return true;
 }
 
@@ -284,7 +294,13 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
                                            SetSolverProperties::Response& res) {
   const auto lock = LockForService();
   SimulatorOptions o = sim_->options();
+  o.time_step = tick_;
+  o.solver.tolerance_rel = solver_tolerance_;
+  AccuracyOptions accuracy = accuracy_;
   try {
+    if (auto v = Scalar("accuracy", req.accuracy)) accuracy.tolerance = *v;
+    if (auto v = Scalar("min_dt", req.min_dt)) accuracy.min_time_step = *v;
+    if (auto v = Scalar("max_dt", req.max_dt)) accuracy.max_time_step = *v;
     if (auto v = Scalar("time_step", req.time_step)) o.time_step = *v;
     if (auto v = Scalar("tolerance", req.tolerance)) o.solver.tolerance_rel = *v;
     if (auto v = Scalar("tolerance_abs", req.tolerance_abs)) o.solver.tolerance_abs = *v;
@@ -317,12 +333,17 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
       o.integrator = *integrator;
     }
     ValidateSimulatorOptions(o);
+    ValidateAccuracyOptions(accuracy);
     sim_->SetOptions(o);
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string("rejected, nothing changed: ") + e.what();
     return true;
   }
+  tick_ = o.time_step;
+  solver_tolerance_ = o.solver.tolerance_rel;
+  accuracy_ = accuracy;
+  ResetStepper();
   UpdatePeriods();
   RestartChannels();
   anchor_wall_ = Clock::now();
@@ -333,7 +354,12 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
           << ", tolerance " << o.solver.tolerance_rel << " (abs " << o.solver.tolerance_abs
           << "), max iterations " << o.solver.max_iterations << ", relaxation "
           << o.solver.relaxation << ", gyroscopic " << GyroscopicSchemeName(o.gyroscopic)
-          << ", integrator " << IntegratorName(o.integrator);
+          << ", integrator " << IntegratorName(o.integrator) << ", accuracy "
+          << accuracy.tolerance;
+  if (accuracy.tolerance > 0.0) {
+    message << " (steps in [" << accuracy.min_time_step << ", " << accuracy.max_time_step
+            << "] s)";
+  }
   res.status_message = message.str();
   return true;
 }

@@ -74,6 +74,10 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       private_nh_(private_nh),
       updater_(nh, private_nh) {
   sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+  tick_ = parameters_.simulator.time_step;
+  solver_tolerance_ = parameters_.simulator.solver.tolerance_rel;
+  accuracy_ = parameters_.accuracy;
+  ResetStepper();
   BuildModels();
   paused_ = parameters_.paused;
   for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
@@ -181,7 +185,7 @@ void SimulationNode::Run() {
       continue;
     }
     const Clock::time_point start = Clock::now();
-    const double dt = sim_->options().time_step;
+    const double dt = tick_;
     const double factor = pace_;
     std::int64_t budget = std::numeric_limits<std::int64_t>::max();
     if (factor > 0.0) {
@@ -216,15 +220,17 @@ void SimulationNode::Run() {
 std::int64_t SimulationNode::RunChunk(std::int64_t budget, Clock::time_point deadline) {
   const Clock::time_point start = Clock::now();
   std::int64_t done = 0;
-  const double dt = sim_->options().time_step;
+  std::int64_t calls = 0;
   while (done < budget && !paused_) {
-    StepOnce();
-    running_sim_time_ += dt;
-    ++steps_since_anchor_;
-    ++done;
+    const std::int64_t ticks = StepOnce(budget - done);
+    running_sim_time_ += static_cast<double>(ticks) * tick_;
+    steps_since_anchor_ += ticks;
+    done += ticks;
     // the clock every kWallCheckSteps steps, or after every step that iterated long (up to
-    // SimulatorOptions' cap of iterations, a step can take milliseconds)
-    if ((done % kWallCheckSteps == 0 || last_step_.solver.iterations > kLongStepIterations) &&
+    // SimulatorOptions' cap of iterations, a step can take milliseconds) or advanced several
+    // ticks (~accuracy: many steps)
+    if ((++calls % kWallCheckSteps == 0 || ticks > 1 ||
+         last_step_.solver.iterations > kLongStepIterations) &&
         Clock::now() > deadline) {
       break;
     }
@@ -245,15 +251,37 @@ void SimulationNode::FinishChunk(Clock::time_point start) {
   LogSummaryIfDue();
 }
 
-void SimulationNode::StepOnce() {
+std::int64_t SimulationNode::StepOnce(std::int64_t max_ticks) {
+  std::int64_t ticks = 1;
+  if (stepper_) {
+    // up to the next tick a topic is due at (or ~duration)
+    for (const Channel* c : {&tf_, &contacts_, &state_, &markers_}) {
+      if (c->period > 0) max_ticks = std::min(max_ticks, std::max<std::int64_t>(1, c->countdown));
+    }
+    if (parameters_.duration > 0.0 && !duration_reached_) {
+      const auto left = std::llround((parameters_.duration - sim_->time()) / tick_);
+      max_ticks = std::min(max_ticks, std::max<std::int64_t>(1, left));
+    }
+    ticks = std::max<std::int64_t>(1, max_ticks);
+  }
+  const double interval = static_cast<double>(ticks) * tick_;
   try {
-    if (wrenches_active_) ApplyWrenches();
-    // in place: the statistics' per-contact flags keep their storage (no allocation per step)
-    sim_->Step(&last_step_);
+    if (wrenches_active_) ApplyWrenches(interval);
+    if (stepper_) {
+      // each accepted step counted in the statistics; last_step_ is the last one's
+      last_step_ = stepper_->AdvanceTo(sim_->time() + interval,
+                                       [this](const StepStatistics& s, double) {
+                                         period_.Add(s);
+                                         total_.Add(s);
+                                       });
+    } else {
+      // in place: the statistics' per-contact flags keep their storage (no allocation per step)
+      sim_->Step(&last_step_);
+    }
   } catch (const std::exception& e) {
     // the core validates its inputs and throws on what it cannot step; never abort the node
     Fault(std::string("a step failed: ") + e.what());
-    return;
+    return ticks;
   }
   if (!last_step_.state_finite) {
     char reason[256];
@@ -262,7 +290,7 @@ void SimulationNode::StepOnce() {
                   last_step_.max_dt_omega,
                   std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
     Fault(reason);
-    return;
+    return ticks;
   }
   if (last_step_.explicit_gyroscopic_unsafe) {
     const double dt = sim_->options().time_step;
@@ -274,16 +302,28 @@ void SimulationNode::StepOnce() {
         kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, sim_->time(),
         kExplicitGyroscopicMaxDtOmega * dt / last_step_.max_dt_omega);
   }
-  period_.Add(last_step_);
-  total_.Add(last_step_);
-  PublishDue();
-  const double dt = sim_->options().time_step;
+  if (!stepper_) {
+    period_.Add(last_step_);
+    total_.Add(last_step_);
+  }
+  PublishDue(ticks);
   if (parameters_.duration > 0.0 && !duration_reached_ &&
-      sim_->time() >= parameters_.duration - 0.5 * dt) {
+      sim_->time() >= parameters_.duration - 0.5 * tick_) {
     duration_reached_ = true;
     summary_due_ = true;  // logged by the caller once this chunk's wall time is counted
     Pause("duration reached");
   }
+  return ticks;
+}
+
+void SimulationNode::ResetStepper() {
+  stepper_.reset();
+  SimulatorOptions options = sim_->options();
+  options.time_step = tick_;
+  options.solver.tolerance_rel = solver_tolerance_;
+  sim_->SetOptions(options);
+  // the stepper lowers the solver's tolerance to TOL/100 and changes the step at every step
+  if (accuracy_.tolerance > 0.0) stepper_ = std::make_unique<AdaptiveStepper>(sim_.get(), accuracy_);
 }
 
 void SimulationNode::LogSummaryIfDue() {
@@ -333,7 +373,7 @@ void SimulationNode::Unpause() {
 // publishing
 
 void SimulationNode::UpdatePeriods() {
-  const double dt = sim_->options().time_step;
+  const double dt = tick_;
   tf_.rate = parameters_.tf_rate;
   contacts_.rate = parameters_.contacts_rate;
   state_.rate = parameters_.state_rate;
@@ -359,14 +399,15 @@ void SimulationNode::RestartChannels() {
   for (Channel* c : {&tf_, &contacts_, &state_, &markers_}) c->countdown = c->period;
 }
 
-void SimulationNode::PublishDue() {
+void SimulationNode::PublishDue(std::int64_t ticks) {
   bool due[4];
   bool any = false;
   Channel* channels[4] = {&tf_, &contacts_, &state_, &markers_};
   for (int i = 0; i < 4; ++i) {
     Channel& c = *channels[i];
-    due[i] = c.period > 0 && --c.countdown <= 0;
-    if (due[i]) c.countdown = c.period;
+    c.countdown -= ticks;
+    due[i] = c.period > 0 && c.countdown <= 0;
+    if (due[i]) c.countdown = c.period + (c.countdown % c.period);
     any = any || due[i];
   }
   if (!any) return;
@@ -496,7 +537,9 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     snapshot_.models = models_.size();
     snapshot_.friction_sets = FrictionSetSummary();
     snapshot_.solver = std::string(SolverTypeName(sim_->options().solver.type));
-    snapshot_.time_step = sim_->options().time_step;
+    snapshot_.time_step = tick_;
+    snapshot_.accuracy = accuracy_;
+    snapshot_.adaptive = stepper_ ? stepper_->statistics() : AdaptiveStatistics();
     snapshot_.pace = pace_;
     snapshot_.fault = fault_;
     snapshot_.faults = faults_;
@@ -534,7 +577,18 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("steps in period", p.steps);
   status.add("step wall time [us]", 1e6 * (p.busy_wall - p.publish_wall) / steps);
   status.add("publish wall time per step [us]", 1e6 * p.publish_wall / steps);
-  status.add("time step [s]", s.time_step);
+  status.add("time step [s] (with accuracy > 0: the tick of ~step and the publish periods)",
+             s.time_step);
+  status.add("accuracy (0: fixed steps)", s.accuracy.tolerance);
+  if (s.accuracy.tolerance > 0.0) {
+    const AdaptiveStatistics& a = s.adaptive;
+    status.add("accepted steps (accuracy, in total)", a.accepted_steps);
+    status.add("rejected steps (accuracy, in total)", a.rejected_steps);
+    status.add("forced steps at min_dt (accuracy, in total)", a.forced_steps);
+    status.add("smallest step [s] (accuracy)", a.accepted_steps > 0 ? a.smallest_step : 0.0);
+    status.add("largest step [s] (accuracy)", a.largest_step);
+    status.add("max error estimate (accuracy: <= TOL * step, unless forced)", a.max_error);
+  }
   status.add("solver", s.solver);
   status.add("solver iterations (mean)", static_cast<double>(p.iterations_sum) / steps);
   status.add("solver iterations (max)", p.iterations_max);

@@ -300,11 +300,12 @@ bool SimulationNode::OnClearBodyWrenches(BodyRequest::Request& req, BodyRequest:
 // ---------------------------------------------------------------------------------------------
 // the wrenches of the next step (integrator, mutex held)
 
-void SimulationNode::ApplyWrenches() {
-  // each wrench weighted by the part of [t, t + Δt] it covers: the impulse over a step is exactly
-  // the wrench integrated over the requested interval
+void SimulationNode::ApplyWrenches(double interval) {
+  // each wrench weighted by the part of [t, t + Δt] it covers (Δt: the step, or with ~accuracy the
+  // ticks StepOnce advances): the impulse over it is exactly the wrench integrated over the
+  // requested interval
   const double t = sim_->time();
-  const double dt = sim_->options().time_step;
+  const double dt = interval;
   const std::size_t bodies = sim_->scene().bodies.size();
   wrench_force_.assign(bodies, Eigen::Vector3d::Zero());
   wrench_torque_.assign(bodies, Eigen::Vector3d::Zero());

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <string>
 
+#include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/initial_conditions.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
@@ -39,6 +40,10 @@ struct NodeParameters {
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
                                   ///< ~max_iterations, ~relaxation, ~gyroscopic, ~integrator,
                                   ///< ~gap_correction (bool, default true)
+  /// ~accuracy (TOL; 0 = fixed steps of ~time_step), ~min_dt, ~max_dt: with TOL > 0 each step is
+  /// chosen from an error estimate (AdaptiveStepper) and ~time_step is the node's tick only: the
+  /// sample times it publishes at and the unit of ~step
+  AccuracyOptions accuracy;
   std::string initial_body;       ///< ~initial/body: the body the initial conditions move
   InitialConditions initial;      ///< ~initial/{inclination,spin,position,orientation,
                                   ///< linear_velocity,angular_velocity}

@@ -38,6 +38,7 @@
 #include "nonsmooth_sim/SetSolverProperties.h"
 #include "nonsmooth_sim/SpawnModel.h"
 #include "nonsmooth_sim/StepSimulation.h"
+#include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
 #include "nonsmooth_sim/node/node_parameters.h"
@@ -106,9 +107,15 @@ class SimulationNode {
 
   // --- integrator (mutex held)
   void Run();
-  /// Steps until `budget` steps are done, the deadline passes or the run pauses; returns the steps.
+  /// Steps until `budget` ticks are done, the deadline passes or the run pauses; returns the ticks.
   std::int64_t RunChunk(std::int64_t budget, Clock::time_point deadline);
-  void StepOnce();
+  /// Advances the simulation by at least one and at most `max_ticks` ticks (tick_): one step of
+  /// tick_ with fixed steps; with ~accuracy, up to the next sample a topic is due at, in steps the
+  /// error estimate chooses. Returns the ticks advanced (those that a fault cut short count).
+  std::int64_t StepOnce(std::int64_t max_ticks);
+  /// ~accuracy: (re)creates stepper_ over sim_ with accuracy_ (TOL > 0), or removes it and
+  /// gives sim_ back the fixed step tick_.
+  void ResetStepper();
   /// After a chunk of steps that began at `start`: the pending samples sent, the chunk's wall
   /// time counted, and the end-of-run log line if ~duration was reached in it.
   void FinishChunk(Clock::time_point start);
@@ -125,7 +132,8 @@ class SimulationNode {
   // --- publishing (mutex held)
   void UpdatePeriods();
   void RestartChannels();
-  void PublishDue();
+  /// After `ticks` ticks: publishes what is due (a channel is due at most once per call).
+  void PublishDue(std::int64_t ticks);
   void PublishTransforms();
   void PublishContacts();
   /// Sends the pending /tf and ~contacts samples, each topic as one message.
@@ -170,8 +178,8 @@ class SimulationNode {
   /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
   /// `field` for anything else that is not a body.
   int ReferenceBody(const std::string& name, const char* field) const;
-  /// Sets the core's external wrenches for the next step from wrenches_ (integrator).
-  void ApplyWrenches();
+  /// Sets the core's external wrenches from wrenches_ for the next `interval` [s] (integrator).
+  void ApplyWrenches(double interval);
 
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
@@ -203,6 +211,12 @@ class SimulationNode {
 
   // --- guarded by mutex_
   std::unique_ptr<Simulator> sim_;
+  /// [s] the node's tick, ~time_step: its step with fixed steps; with ~accuracy the unit of ~step
+  /// and of the publish periods (the stepper changes sim_'s time step at every step)
+  double tick_ = 0.0;
+  double solver_tolerance_ = 0.0;   ///< ~tolerance as asked (the stepper lowers sim_'s)
+  AccuracyOptions accuracy_;        ///< ~accuracy, ~min_dt, ~max_dt
+  std::unique_ptr<AdaptiveStepper> stepper_;  ///< with ~accuracy > 0, over sim_
   StepStatistics last_step_;
   bool paused_ = false;
   bool duration_reached_ = false;
@@ -250,6 +264,8 @@ class SimulationNode {
     std::string friction_sets;
     std::string solver;
     double time_step = 0.0;
+    AccuracyOptions accuracy;
+    AdaptiveStatistics adaptive;  ///< of the stepper since it was made (~accuracy > 0)
     double pace = 0.0;
     std::string fault;
     std::int64_t faults = 0;
