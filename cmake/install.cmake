@@ -2,7 +2,7 @@
 # space (P = CMAKE_INSTALL_PREFIX, set at configure time: catkin writes it into P/setup.bash),
 # laid out as catkin expects, so that `source P/setup.bash` then `rosrun nonsmooth_sim
 # nonsmooth_sim_node` / `roslaunch nonsmooth_sim tippe_top.launch` work from it
-# (test/install/install_test.sh checks exactly that). Included last from CMakeLists.txt, with ROS.
+# (test/install/install_test.py checks exactly that). Included last from CMakeLists.txt, with ROS.
 #
 #   P/lib/nonsmooth_sim/        nonsmooth_sim_node, simulate, node_speed_subscriber, the report scripts
 #   P/lib/                      the static libraries (core, scene_io, collision_fcl, ros)

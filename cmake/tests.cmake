@@ -46,3 +46,7 @@ add_executable(one_body_bound EXCLUDE_FROM_ALL ${PROJECT_SOURCE_DIR}/bench/one_b
 add_dependencies(tests one_body_bound)
 target_link_libraries(one_body_bound PRIVATE nonsmooth_sim_core)
 set_target_properties(one_body_bound PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
+
+# Every repository path named in the docs, build files and comments exists (no ROS needed).
+add_test(NAME docs_paths_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/docs/paths_test.py)
