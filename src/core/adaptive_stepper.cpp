@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kMinTimeStep = 1e-7;  // [s], as SimulatorOptions::time_step
 constexpr double kMaxTimeStep = 1e-2;
+constexpr double kSmallestStep = 2.0 * kMinTimeStep;  // H: its halves are valid time steps
 constexpr double kSafety = 0.9;         // the next step aims at 0.9 of the allowed error
 constexpr double kMinFactor = 0.2;      // a step shrinks by at most 5x, grows by at most 2x
 constexpr double kMaxFactor = 2.0;
@@ -28,8 +29,8 @@ void RequireIn(const char* field, double value, double low, double high) {
 
 void ValidateAccuracyOptions(const AccuracyOptions& options) {
   if (options.tolerance != 0.0) RequireIn("tolerance", options.tolerance, 1e-9, 1.0);
-  RequireIn("min_time_step", options.min_time_step, kMinTimeStep, kMaxTimeStep);
-  RequireIn("max_time_step", options.max_time_step, kMinTimeStep, kMaxTimeStep);
+  RequireIn("min_time_step", options.min_time_step, kSmallestStep, kMaxTimeStep);
+  RequireIn("max_time_step", options.max_time_step, kSmallestStep, kMaxTimeStep);
   if (options.min_time_step > options.max_time_step) {
     std::ostringstream s;
     s << "AccuracyOptions.min_time_step = " << options.min_time_step
@@ -63,6 +64,7 @@ void AdaptiveStepper::UpdateScales() {
     double& size = size_[static_cast<std::size_t>(c.body)];
     size = std::max(size, c.pose.translation().norm() + BoundingRadius(c.shape));
   }
+  smallest_size_ = size_.empty() ? 1.0 : *std::min_element(size_.begin(), size_.end());
 }
 
 double AdaptiveStepper::ErrorEstimate(double h) const {
@@ -91,14 +93,14 @@ StepStatistics AdaptiveStepper::AdvanceTo(
   if (simulator_->scene().bodies.size() != size_.size()) UpdateScales();  // the world changed
   const double order = simulator_->options().integrator == Integrator::kMoreau2 ? 2.0 : 1.0;
   // a remainder below the smallest step is absorbed into the last step
-  while (!simulator_->diverged() && t_end - simulator_->time() > 0.5 * kMinTimeStep) {
+  while (!simulator_->diverged() && t_end - simulator_->time() > 0.5 * kSmallestStep) {
     const double remaining = t_end - simulator_->time();
     double h = std::min(next_step_, remaining);
     // no sliver after it: the rest in one step, or in two halves
     if (remaining - h < options_.min_time_step) {
       h = h < remaining && remaining >= 2.0 * options_.min_time_step ? 0.5 * remaining : remaining;
     }
-    h = std::clamp(h, kMinTimeStep, kMaxTimeStep);
+    h = std::clamp(h, kSmallestStep, kMaxTimeStep);
     // the smallest step allowed, or the rest up to t_end below two of them: accepted whatever
     const bool smallest =
         h <= options_.min_time_step * (1.0 + 1e-12) || remaining <= 2.0 * options_.min_time_step;
@@ -119,11 +121,16 @@ StepStatistics AdaptiveStepper::AdvanceTo(
     // y_{H/2,H/2}
     simulator_->SetTimeStep(0.5 * h);
     simulator_->Step(&stats);
+    double lift = stats.gap_correction;
     if (stats.state_finite) simulator_->Step(&stats);
+    lift = std::max(lift, stats.gap_correction);
     statistics_.simulator_steps += 2;
     if (!stats.state_finite) return stats;  // diverged: the simulator stays stopped
     const bool single_finite = end_single_.size() == simulator_->state().size();
-    const double error = single_finite ? ErrorEstimate(h) : std::numeric_limits<double>::infinity();
+    // the gap correction's lift is a position error the kept steps made (an impact detected a
+    // part of a step late): both estimates end lifted alike, so the difference does not show it
+    const double error = single_finite ? std::max(ErrorEstimate(h), lift / smallest_size_)
+                                       : std::numeric_limits<double>::infinity();
     const double allowed = options_.tolerance * h;  // TOL per second of simulated time
     const double ratio = error / allowed;
     double factor = ratio > 0.0 ? kSafety * std::pow(ratio, -1.0 / order) : kMaxFactor;

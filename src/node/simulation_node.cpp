@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/overlaps.h"
 #include "nonsmooth_sim/node/initial_conditions.h"
 
 namespace nonsmooth_sim::node {
@@ -81,6 +82,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   BuildModels();
   paused_ = parameters_.paused;
   for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
+  // overlaps at the start: resolved by the first steps, but a deep one is usually a scene error
+  for (const Overlap& o : FindOverlaps(sim_->scene(), sim_->state(), kOverlapWarningDepth)) {
+    ROS_WARN("nonsmooth_sim: collisions \"%s\" and \"%s\" overlap by %.3g m at the start "
+             "(resolved by the first steps)",
+             sim_->scene().colliders[static_cast<std::size_t>(o.collider_a)].name.c_str(),
+             sim_->scene().colliders[static_cast<std::size_t>(o.collider_b)].name.c_str(),
+             o.depth);
+  }
 
   const int queue = parameters_.queue_size;
   // latched: a node joining while paused learns the time at once (and never sees 0); the same

@@ -108,13 +108,13 @@ const std::map<std::string, Setter>& ValueOptions() {
        }},
       {"--min-dt",
        [](RunConfig& c, const std::string& o, const std::string& v) {
-         c.accuracy.min_time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
-                                                "a time step in [1e-07, 0.01] s");
+         c.accuracy.min_time_step = ParseNumber(o, v, 2.0 * kMinTimeStep, kMaxTimeStep, false,
+                                                false, "a time step in [2e-07, 0.01] s");
        }},
       {"--max-dt",
        [](RunConfig& c, const std::string& o, const std::string& v) {
-         c.accuracy.max_time_step = ParseNumber(o, v, kMinTimeStep, kMaxTimeStep, false, false,
-                                                "a time step in [1e-07, 0.01] s");
+         c.accuracy.max_time_step = ParseNumber(o, v, 2.0 * kMinTimeStep, kMaxTimeStep, false,
+                                                false, "a time step in [2e-07, 0.01] s");
        }},
       {"--dt",
        [](RunConfig& c, const std::string& o, const std::string& v) {

@@ -81,6 +81,24 @@ TEST(AccuracyOptions, OutOfRangeIsRefusedWithTheField) {
   }
 }
 
+TEST(AccuracyOptions, SmallestStepHasValidHalves) {
+  // a step H is also taken as two of H/2, each a valid SimulatorOptions::time_step (≥ 1e-7)
+  AccuracyOptions o;
+  o.tolerance = 1e-3;
+  o.min_time_step = 1e-7;
+  EXPECT_THROW(ValidateAccuracyOptions(o), std::invalid_argument);
+  o.min_time_step = 2e-7;
+  EXPECT_NO_THROW(ValidateAccuracyOptions(o));
+  Simulator sim(MakeTippeTopScene(), Moreau2());
+  AdaptiveStepper stepper(&sim, o);
+  // remainders down to the smallest step, and below it (absorbed)
+  for (const double dt : {3e-7, 2e-7, 1.5e-7, 1e-7, 5e-8}) {
+    const double t = sim.time() + dt;
+    EXPECT_NO_THROW(stepper.AdvanceTo(t, {})) << dt;
+    EXPECT_NEAR(sim.time(), t, 1.01e-7) << dt;
+  }
+}
+
 TEST(AdaptiveStepper, LandsOnTheRequestedTimesWithAcceptedErrorsWithinTolerance) {
   Simulator sim(MakeTippeTopScene(), Moreau2());
   AccuracyOptions options;

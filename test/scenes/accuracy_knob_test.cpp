@@ -71,7 +71,9 @@ TEST(AccuracyKnob, TippeTopTouchdownWithinTenTimesTheTolerance) {
                 tolerance, *t, *t_ref, error, error / tolerance, steps);
     EXPECT_LE(error, 10.0 * tolerance) << tolerance;
     // the loosest TOL costs less than fixed steps of the default Δt (14 500 steps to 1.45 s)
-    if (tolerance == 1e-2) EXPECT_LT(steps, std::lround(1.45 / kDefaultStep)) << tolerance;
+    if (tolerance == 1e-2) {
+      EXPECT_LT(steps, std::lround(1.45 / kDefaultStep)) << tolerance;
+    }
   }
 }
 

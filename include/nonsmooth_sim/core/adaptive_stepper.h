@@ -37,8 +37,8 @@ struct AccuracyOptions {
   /// TOL: the estimated error per second of simulated time, relative to the scales above, in
   /// [1e-9, 1]; 0 = fixed steps of SimulatorOptions::time_step
   double tolerance = 0.0;
-  double min_time_step = 1e-6;  ///< [s], in [1e-7, 1e-2], ≤ max_time_step
-  double max_time_step = 1e-2;  ///< [s], in [1e-7, 1e-2]
+  double min_time_step = 1e-6;  ///< [s], in [2e-7, 1e-2] (its halves ≥ 1e-7), ≤ max_time_step
+  double max_time_step = 1e-2;  ///< [s], in [2e-7, 1e-2]
 };
 /// Throws std::invalid_argument naming the field and its allowed range.
 void ValidateAccuracyOptions(const AccuracyOptions& options);
@@ -84,6 +84,7 @@ class AdaptiveStepper {
   Simulator::Checkpoint start_;
   std::vector<BodyState> end_single_;   // y_H
   std::vector<double> size_;            // per body: L [m]
+  double smallest_size_ = 1.0;          // min L [m]: the scale of StepStatistics::gap_correction
 };
 
 }  // namespace nonsmooth_sim

@@ -66,8 +66,8 @@
 //    friction dissipates far more. With kImplicitMidpoint the Tippe-Top's largest per-step energy
 //    increase is round-off (3.5e-18 J).
 //
-// Step() allocates nothing once every problem size n it meets has been seen once (the contact
-// problems are kept per size n; Eigen resizes would reallocate otherwise).
+// Step() allocates nothing once the largest problem it meets has been seen once (one contact
+// problem whose storage only grows, BlockContactProblem::Resize).
 //
 // The step is an orchestration of stages over (Model, StepData), each in its own file pair under
 // core/step/: moreau_kinematics (13), (14), (18), (15); contact_pipeline (12) and W; islands;
@@ -159,8 +159,8 @@ class Simulator {
   void Restore(const Checkpoint& checkpoint);
   /// Switches the friction set of every contact (name empty), of every contact of one collider
   /// (name = a collider's name) or of one contact (name = ContactName, "<first>/<second>"). The
-  /// state is kept, the warm start of changed contacts dropped. Throws std::invalid_argument for an
-  /// unknown name or set, changing nothing.
+  /// state is kept, every contact's warm start dropped (a changed one would start outside its
+  /// set). Throws std::invalid_argument for an unknown name or set, changing nothing.
   void SetFrictionSet(FrictionSet set, const std::string& name = "");
   /// The friction set a contact named `name` ("<first>/<second>") would use.
   FrictionSet FrictionSetOf(const std::string& name) const;
