@@ -59,10 +59,24 @@ void AdaptiveStepper::UpdateScales() {
   // L per body: the farthest extent of its colliders from S (at least 1 mm)
   const Scene& scene = simulator_->scene();
   size_.assign(scene.bodies.size(), 1e-3);
+  extents_.clear();
   for (const Collider& c : scene.colliders) {
     if (c.body < 0) continue;
     double& size = size_[static_cast<std::size_t>(c.body)];
     size = std::max(size, c.pose.translation().norm() + BoundingRadius(c.shape));
+    ColliderExtent e;
+    e.body = c.body;
+    e.center = c.pose.translation();
+    const ShapeType type = c.shape.type;
+    if (type != ShapeType::kSphere) {
+      e.radius = BoundingRadius(c.shape);
+      if (type == ShapeType::kCylinder || type == ShapeType::kCapsule) {
+        e.axis = c.pose.linear().col(2);  // a turn about its own axis moves nothing
+      } else {
+        e.turns = true;
+      }
+    }
+    extents_.push_back(e);
   }
   smallest_size_ = size_.empty() ? 1.0 : *std::min_element(size_.begin(), size_.end());
 }
@@ -74,12 +88,24 @@ double AdaptiveStepper::ErrorEstimate(double h) const {
     const BodyState& x = now[b];
     const BodyState& y = end_single_[b];
     const double size = size_[b];
-    // velocities as the displacement they make over the step (header: index-2 components); the
-    // orientation is left out: the phase of a fast spin is irrelevant to every event of a top,
-    // and the error of the rotation's axis shows in ω·H
+    // velocities as the displacement they make over the step (header: index-2 components)
     worst = std::max({worst, (x.position - y.position).norm() / size,
                       (x.linear_velocity - y.linear_velocity).norm() * h / size,
                       (x.angular_velocity - y.angular_velocity).norm() * h});
+  }
+  // the orientation by what it moves of each collider's surface: a sphere's centre, a cylinder's
+  // or capsule's axis, every turn of a box or an ellipsoid (the spin of a top about its axis of
+  // symmetry moves nothing and is left free; a spinning die's is not)
+  for (const ColliderExtent& e : extents_) {
+    const BodyState& x = now[static_cast<std::size_t>(e.body)];
+    const BodyState& y = end_single_[static_cast<std::size_t>(e.body)];
+    double moved = (x.orientation * e.center - y.orientation * e.center).norm();
+    if (e.turns) {
+      moved += e.radius * x.orientation.angularDistance(y.orientation);
+    } else if (e.radius > 0.0) {
+      moved += e.radius * (x.orientation * e.axis - y.orientation * e.axis).norm();
+    }
+    worst = std::max(worst, moved / size_[static_cast<std::size_t>(e.body)]);
   }
   // Richardson: the half steps' error is the difference over 2^p - 1
   const bool second_order = simulator_->options().integrator == Integrator::kMoreau2;
@@ -121,14 +147,15 @@ StepStatistics AdaptiveStepper::AdvanceTo(
     // y_{H/2,H/2}
     simulator_->SetTimeStep(0.5 * h);
     simulator_->Step(&stats);
-    double lift = stats.gap_correction;
+    double lift = std::max(stats.gap_correction, stats.new_contact_depth);
     if (stats.state_finite) simulator_->Step(&stats);
-    lift = std::max(lift, stats.gap_correction);
+    lift = std::max({lift, stats.gap_correction, stats.new_contact_depth});
     statistics_.simulator_steps += 2;
     if (!stats.state_finite) return stats;  // diverged: the simulator stays stopped
     const bool single_finite = end_single_.size() == simulator_->state().size();
-    // the gap correction's lift is a position error the kept steps made (an impact detected a
-    // part of a step late): both estimates end lifted alike, so the difference does not show it
+    // position errors the kept steps made that both estimates share, so that their difference
+    // does not show them: the gap correction's lift, and the depth at which a new contact (an
+    // impact) was found, a part of a step late (StepStatistics::new_contact_depth)
     const double error = single_finite ? std::max(ErrorEstimate(h), lift / smallest_size_)
                                        : std::numeric_limits<double>::infinity();
     const double allowed = options_.tolerance * h;  // TOL per second of simulated time

@@ -73,6 +73,7 @@ void Simulator::Step(StepStatistics* out) {
   stats.gyroscopic_passes = 0;
   stats.max_dt_omega = 0.0;
   stats.explicit_gyroscopic_unsafe = false;
+  stats.new_contact_depth = 0.0;
   stats.gap_correction = 0.0;
   stats.gap_correction_energy = 0.0;
   stats.gap_correction_undone = false;
@@ -91,6 +92,12 @@ void Simulator::Step(StepStatistics* out) {
   }
   // (12) the index set at q_M with W, and the islands of bodies it links
   contact_pipeline_.FindContacts(model_, state_, &data_, &stats);
+  for (std::size_t k = 0; k < data_.closed_count; ++k) {
+    const ClosedContact& c = data_.closed[k];
+    if (c.memory->closed_step != data_.step - 1) {
+      stats.new_contact_depth = std::max(stats.new_contact_depth, -c.report.gap);
+    }
+  }
   islands_.Build(data_.closed.data(), data_.closed_count);
   stats.islands = static_cast<int>(islands_.islands().size());
   // (16), (17) per island; every closed contact belongs to an island, whose solve writes its flags

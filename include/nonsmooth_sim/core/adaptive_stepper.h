@@ -6,7 +6,11 @@
 // scheme of order p the difference of the two estimates the error of the half steps,
 //   err ≈ ‖y_{H/2,H/2} - y_H‖ / (2^p - 1),   p = 2 (Integrator::kMoreau2), 1 (kMoreau)
 // in a norm scaled per body (L: the farthest extent of its colliders from its centre of mass):
-//   ‖Δ‖ = max over bodies of max(|Δr_S| / L, |Δv_S| H / L, |Δω| H)
+//   ‖Δ‖ = max over bodies of max(|Δr_S| / L, |Δv_S| H / L, |Δω| H, |Δx_c| / L)
+// where Δx_c is how far the orientation error moves a collider c of the body: its centre, plus
+// for a cylinder or capsule its axis and for a box or ellipsoid any turn, times its bounding
+// radius (a turn about a sphere's centre or a cylinder's axis moves nothing: the spin phase of a
+// top is left free, the face a die shows is not).
 // Velocities count by the displacement they make over the step, as DAE codes scale the error of
 // index-2 components by H: on a closed contact, the end velocity is held to the contact law at
 // every step, and one step of H and two of H/2 differ in it by O(H) (the Tippe-Top sliding:
@@ -15,6 +19,8 @@
 // difference set the step (h ∝ TOL, first-order cost) and the achieved error was 100-1000x
 // below TOL; scaled by H, the achieved errors of the Tippe-Top's touchdown and the
 // rattleback's reversal lie within 10x of TOL from 1e-2 to 1e-6 (docs/accuracy.md).
+// Two position errors both estimates share are added, as the difference cannot show them: the
+// gap correction's lift and the depth at which a new contact (an impact) was found.
 // The step is accepted if err ≤ TOL · H / (1 s): the error made per second of simulated time is
 // at most TOL, so that the error at a fixed time grows with TOL, not with the number of steps.
 // The next step is H · clamp(0.9 (TOL·H/err)^{1/p}, 0.2, 2), within [min, max]; a rejected
@@ -84,6 +90,15 @@ class AdaptiveStepper {
   Simulator::Checkpoint start_;
   std::vector<BodyState> end_single_;   // y_H
   std::vector<double> size_;            // per body: L [m]
+  // per collider on a body: what of its pose an orientation error moves (ErrorEstimate)
+  struct ColliderExtent {
+    int body = 0;
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in body axes [m]
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();    // the symmetry axis (body axes), or 0
+    double radius = 0.0;  // bounding radius [m]; 0: a sphere (only its centre moves)
+    bool turns = false;   // no symmetry axis: every rotation moves its surface
+  };
+  std::vector<ColliderExtent> extents_;
   double smallest_size_ = 1.0;          // min L [m]: the scale of StepStatistics::gap_correction
 };
 

@@ -52,6 +52,10 @@ struct StepStatistics {
   /// gyroscopic == kExplicit and max_dt_omega > kExplicitGyroscopicMaxDtOmega: energy can grow by
   /// O((Δt·|ω|)²) per step and the run can diverge.
   bool explicit_gyroscopic_unsafe = false;
+  /// The deepest g(q_M) < 0 of a contact that closed in this step and not in the last one (an
+  /// impact found part of a step late: the depth is the position error that lateness makes;
+  /// AdaptiveStepper shrinks the step until it is small) [m], 0 without such a contact.
+  double new_contact_depth = 0.0;
   /// Largest translation |Δr| of a body by SimulatorOptions::gap_correction in this step [m]
   /// (0: none).
   double gap_correction = 0.0;
