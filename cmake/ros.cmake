@@ -93,6 +93,12 @@ if(CATKIN_ENABLE_TESTING)
             --build-dir ${CMAKE_BINARY_DIR})
   set_tests_properties(node_bag_spawn_test PROPERTIES
     ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)
+  # The README's "while it runs" commands, as a user copies them, against the launched node.
+  add_test(NAME node_readme_commands_test
+    COMMAND ${CATKIN_ENV} /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/docs/readme_commands_test.py
+            --build-dir ${CMAKE_BINARY_DIR})
+  set_tests_properties(node_readme_commands_test PROPERTIES
+    ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 300)
 endif()
 
 # The install space and the devel space, used the ROS ways (rosrun, roslaunch), and the launch
