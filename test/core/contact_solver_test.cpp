@@ -26,7 +26,7 @@
 
 #include "allocation_counter.h"  // the NoHeapAllocation tests: the heap allocation count
 #include "nonsmooth_sim/core/ball_contact_solve.h"
-#include "nonsmooth_sim/core/transformation.h"
+#include "dense_transformation.h"  // ContactMapDiagonal, ProblemMapDiagonal
 
 namespace nonsmooth_sim {
 namespace {
@@ -1182,18 +1182,18 @@ TEST(MappedDrillingSets, TheMapFollowsTheOption) {
     const bool drilling = ContactDimension(law) == 4;
     const Eigen::Vector4d a(1.0, 1.0, 1.0, rbar);
     const bool maps_with_option = set == FrictionSet::kExact || set == FrictionSet::kCylinder;
-    EXPECT_EQ(ContactMapDiagonal(law, mapped),
+    EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/true),
               drilling && (maps_with_option || set == FrictionSet::kSphere) ? a
                                                                            : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
-    EXPECT_EQ(ContactMapDiagonal(law, direct),
+    EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/false),
               drilling && set == FrictionSet::kSphere ? a : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
     // the one-argument form is the paper's choice: only sphere
-    EXPECT_EQ(ContactMapDiagonal(law), ContactMapDiagonal(law, direct)) << FrictionSetName(set);
+    EXPECT_EQ(ContactMapDiagonal(law), ContactMapDiagonal(law, false)) << FrictionSetName(set);
     // R̄ = 0 or μ = 0: no drilling component, nothing mapped
-    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.3, 0.0), mapped), Eigen::Vector4d::Ones());
-    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.0, rbar), mapped), Eigen::Vector4d::Ones());
+    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.3, 0.0), true), Eigen::Vector4d::Ones());
+    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.0, rbar), true), Eigen::Vector4d::Ones());
   }
   // stacked: exact (4), frictionless (1), cylinder (4), ellipsoid (4)
   ContactProblem problem;
