@@ -46,3 +46,9 @@ add_executable(one_body_bound EXCLUDE_FROM_ALL ${PROJECT_SOURCE_DIR}/bench/one_b
 add_dependencies(tests one_body_bound)
 target_link_libraries(one_body_bound PRIVATE nonsmooth_sim_core)
 set_target_properties(one_body_bound PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
+
+# Every listing of the friction sets outside the code (msg/srv/launch comments, docs) is the
+# program's list, `simulate --list-friction-sets` (the laws table).
+add_test(NAME friction_sets_listed_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/docs/friction_sets_listed_test.py
+          --simulate $<TARGET_FILE:simulate>)

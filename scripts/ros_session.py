@@ -15,8 +15,13 @@ import xmlrpc.client
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 NODE = "/nonsmooth_sim"  # the node's name in launch/tippe_top.launch
-FRICTION_SETS = ("coulomb", "cylinder", "ellipsoid", "sphere", "exact")
 STOP_TIMEOUT = 30.0  # [s] per process, after SIGINT
+
+
+def friction_sets():
+    """The friction set names, from the program (simulate --list-friction-sets: the laws table)."""
+    return subprocess.run([os.path.join(ROOT, "scripts", "simulate"), "--list-friction-sets"],
+                          check=True, capture_output=True, text=True).stdout.split()
 
 
 def fail(script, message):
