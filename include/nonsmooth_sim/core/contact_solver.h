@@ -273,7 +273,7 @@ struct ContactWork {
   /// the warm start of the next (ProxCoulombContensou); from SolvePrevalidated's `rim_hints`
   double rim_hint = 0.0;
   int dim = 1;
-  FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
+  FrictionSet set = kPlanarFrictionSet;  ///< kPlanarFrictionSet for every 3-component contact
   bool normal_projected = false;
   bool friction_projected = false;
   /// (46): the last iteration accepted the friction block's per-component step y (s_k = 1)
