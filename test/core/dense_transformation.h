@@ -84,7 +84,8 @@ inline Eigen::VectorXd ProblemMapDiagonal(const ContactProblem& problem,
   Eigen::VectorXd a(problem.c.size());
   for (const ContactBlock& contact : problem.contacts) {
     const int dim = ContactDimension(contact.law);
-    a.segment(contact.offset, dim) = ContactMapDiagonal(contact.law, options.map_drilling_sets).head(dim);
+    a.segment(contact.offset, dim) =
+        ContactMapDiagonal(contact.law, options.map_drilling_sets).head(dim);
   }
   return a;
 }
@@ -111,14 +112,16 @@ inline Eigen::VectorXd TransformVelocity(const Eigen::MatrixXd& a, const Eigen::
   return a.transpose() * xi;
 }
 
-inline Eigen::VectorXd TransformPercussion(const Eigen::MatrixXd& a, const Eigen::VectorXd& lambda) {
+inline Eigen::VectorXd TransformPercussion(const Eigen::MatrixXd& a,
+                                           const Eigen::VectorXd& lambda) {
   const Eigen::FullPivLU<Eigen::MatrixXd> lu = dense_detail::NonSingularLu(a);
   dense_detail::RequireSize(lambda.size(), a.rows(), "lambda");
   // Λ̂ = A⁻¹Λ (41)
   return lu.solve(lambda);
 }
 
-inline Eigen::VectorXd RestorePercussion(const Eigen::MatrixXd& a, const Eigen::VectorXd& lambda_hat) {
+inline Eigen::VectorXd RestorePercussion(const Eigen::MatrixXd& a,
+                                         const Eigen::VectorXd& lambda_hat) {
   dense_detail::RequireSquare(a, "A");
   dense_detail::RequireSize(lambda_hat.size(), a.rows(), "lambda_hat");
   // Λ = AΛ̂ (47)
@@ -142,7 +145,8 @@ inline Eigen::MatrixXd MetricOnTransformed(const Eigen::MatrixXd& a, const Eigen
   return a.transpose() * r * a;
 }
 
-inline Eigen::MatrixXd TransformDelassusDiagonal(const Eigen::MatrixXd& g, const Eigen::VectorXd& a) {
+inline Eigen::MatrixXd TransformDelassusDiagonal(const Eigen::MatrixXd& g,
+                                                 const Eigen::VectorXd& a) {
   dense_detail::RequireDiagonal(a);
   dense_detail::RequireSquare(g, "G");
   dense_detail::RequireSize(g.rows(), a.size(), "G");
@@ -150,7 +154,8 @@ inline Eigen::MatrixXd TransformDelassusDiagonal(const Eigen::MatrixXd& g, const
   return a.asDiagonal() * g * a.asDiagonal();
 }
 
-inline Eigen::VectorXd TransformVelocityDiagonal(const Eigen::VectorXd& a, const Eigen::VectorXd& xi) {
+inline Eigen::VectorXd TransformVelocityDiagonal(const Eigen::VectorXd& a,
+                                                 const Eigen::VectorXd& xi) {
   dense_detail::RequireDiagonal(a);
   dense_detail::RequireSize(xi.size(), a.size(), "xi");
   // ξ̂_k = a_k ξ_k (41)

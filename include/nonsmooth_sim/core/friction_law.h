@@ -3,24 +3,24 @@
 // Möller, Leine, Glocker (ESMC 2009), section 6. A row names the set and says what the solver
 // (contact_solver.h) needs to know about it:
 //
-//   name       set                      drilling  prox (force_sets.h)      coordinates  ball metric  warm start
-//   coulomb    disk ||Λ_T|| ≤ μΛ_N      no        ProxDisk, Λ_τ = 0        original     (1, 1, 1)    Λ
-//   cylinder   C_F (54)                 yes       ProxCylinder             by option    none         Λ
-//   ellipsoid  E_F (55)                 yes       ProxEllipsoid            original     (1, 1, R̄)   Λ
-//   sphere     S_F = A⁻¹E_F (57)-(59)   yes       ProxBall                 mapped (56)  (1, 1, 1)    Λ
-//   exact      B_F (51)-(53)            yes       ProxCoulombContensou     by option    none         Λ, rim hint
+//   name       set                     drilling  prox                  coordinates  ball     warm
+//   coulomb    disk ||Λ_T|| ≤ μΛ_N     no        ProxDisk, Λ_τ = 0     original     I        Λ
+//   cylinder   C_F (54)                yes       ProxCylinder          by option    -        Λ
+//   ellipsoid  E_F (55)                yes       ProxEllipsoid         original     (1,1,R̄) Λ
+//   sphere     S_F = A⁻¹E_F (57)-(59)  yes       ProxBall              mapped (56)  I        Λ
+//   exact      B_F (51)-(53)           yes       ProxCoulombContensou  by option    -        Λ, rim
 //
 //  - drilling: whether a contact with μ > 0 and R̄ > 0 has the drilling component Λ_τ (4
 //    components); without it a contact is 3-component and every law is the coulomb disk there.
-//  - prox: the exact Euclidean projection onto the set in the coordinates it is iterated in,
-//    prox(z, radius = μΛ_N, set_rbar = R̄ of the iterated set, hint = the law's warm start).
+//  - prox (force_sets.h): the exact Euclidean projection onto the set in the coordinates it is
+//    iterated in, prox(z, radius = μΛ_N, set_rbar = R̄ of the iterated set, hint = its warm start).
 //  - coordinates: the diagonal map A of (56) the solver iterates in, Λ̂ = A⁻¹Λ (40)-(47)
 //    (transformation.h, ContactMapDiagonal); "by option": with SolverOptions::map_drilling_sets
 //    (A⁻¹B_F = B_F, A⁻¹C_F = C_F with R̄ = 1), on the original set (37) without it.
-//  - ball metric: D with the iterated set = {||D⁻¹Λ̂_F|| ≤ μΛ̂_N}, if it is a ball up to a diagonal
-//    map: such contacts can be solved directly (ball_contact_solve.h); R̄ is set_rbar.
-//  - warm start: what a contact carries from one step to the next besides its percussion Λ: B_F's
-//    prox also its last foot point (ProxCoulombContensou's rim_hint).
+//  - ball (metric): D with the iterated set = {||D⁻¹Λ̂_F|| ≤ μΛ̂_N}, if it is a ball up to a
+//    diagonal map: such contacts can be solved directly (ball_contact_solve.h); R̄ is set_rbar.
+//  - warm (start): what a contact carries from one step to the next besides its percussion Λ: B_F's
+//    prox also its last foot point, the rim hint (ProxCoulombContensou's rim_hint).
 //
 // A new law: its prox in a file pair of its own (declared in a header this file includes), one
 // enum value and one row here, and a test of its prox (docs/building.md).
