@@ -26,8 +26,8 @@
 // benchmark with an error.
 //
 // Variants: BM_Fixpoint/<law> runs the default SolverOptions::map_drilling_sets = true (sphere,
-// exact and cylinder iterated on A⁻¹D, (40)-(47); ellipsoid on E_F itself, (37)); exact_direct
-// and cylinder_direct set it to false and iterate B_F and C_F on the original sets (37), as the
+// exact and cylinder iterated on A⁻¹D, (40)-(47); ellipsoid on E_F itself, (37)); exact_unmapped
+// and cylinder_unmapped set it to false and iterate B_F and C_F on the original sets (37), as the
 // paper's B_F timing.
 #include <benchmark/benchmark.h>
 
@@ -201,13 +201,13 @@ void BM_Fixpoint(benchmark::State& state, FrictionSet set, bool map_drilling_set
 }
 
 // Names as in FrictionSetName(): BM_Fixpoint/coulomb, ..., BM_Fixpoint/exact (default options),
-// plus BM_Fixpoint/exact_direct and BM_Fixpoint/cylinder_direct (map_drilling_sets = false).
+// plus BM_Fixpoint/exact_unmapped and BM_Fixpoint/cylinder_unmapped (map_drilling_sets = false).
 BENCHMARK_CAPTURE(BM_Fixpoint, coulomb, FrictionSet::kCoulomb, true);
 BENCHMARK_CAPTURE(BM_Fixpoint, cylinder, FrictionSet::kCylinder, true);
 BENCHMARK_CAPTURE(BM_Fixpoint, ellipsoid, FrictionSet::kEllipsoid, true);
 BENCHMARK_CAPTURE(BM_Fixpoint, sphere, FrictionSet::kSphere, true);
 BENCHMARK_CAPTURE(BM_Fixpoint, exact, FrictionSet::kExact, true);
-BENCHMARK_CAPTURE(BM_Fixpoint, exact_direct, FrictionSet::kExact, false);
-BENCHMARK_CAPTURE(BM_Fixpoint, cylinder_direct, FrictionSet::kCylinder, false);
+BENCHMARK_CAPTURE(BM_Fixpoint, exact_unmapped, FrictionSet::kExact, false);
+BENCHMARK_CAPTURE(BM_Fixpoint, cylinder_unmapped, FrictionSet::kCylinder, false);
 
 }  // namespace

@@ -22,7 +22,7 @@
 #include <cstddef>
 #include <random>
 
-#include "nonsmooth_sim/core/force_sets.h"
+#include "nonsmooth_sim/core/friction_law.h"
 
 namespace {
 

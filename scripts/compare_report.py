@@ -273,13 +273,19 @@ def main():
     p.add_argument("--dt", type=float, default=1e-4)
     p.add_argument("--cpu", type=int, default=1, help="the core every run is pinned to")
     p.add_argument("--our-sets", nargs="+", default=OUR_SETS,
-                   choices=["coulomb", "cylinder", "ellipsoid", "sphere", "exact"])
+                   help="friction sets of ours (simulate --list-friction-sets)")
     p.add_argument("--engines", nargs="+", default=["ode", "mujoco", "bullet"])
     p.add_argument("--doc", default=os.path.join(ROOT, "docs", "compare.md"))
     p.add_argument("--figure", default=os.path.join(ROOT, "docs", "figures", "compare_scaling.png"))
     p.add_argument("--log", help="write every run as a JSON line here")
     p.add_argument("--command", default="scripts/compare", help="the command, for the doc")
     args = p.parse_args()
+    # the friction sets, from the program (the laws table)
+    known = subprocess.run([args.simulate, "--list-friction-sets"], check=True,
+                           capture_output=True, text=True).stdout.split()
+    for s in args.our_sets:
+        if s not in known:
+            p.error("--our-sets: %r is not one of %s" % (s, ", ".join(known)))
     if args.repetitions < 1:
         p.error("--repetitions must be >= 1")
     if args.crowd_only:

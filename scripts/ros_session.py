@@ -15,8 +15,21 @@ import xmlrpc.client
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 NODE = "/nonsmooth_sim"  # the node's name in launch/tippe_top.launch
-FRICTION_SETS = ("coulomb", "cylinder", "ellipsoid", "sphere", "exact")
 STOP_TIMEOUT = 30.0  # [s] per process, after SIGINT
+
+
+def check_friction_set(parser, build_dir, name):
+    """parser.error unless `name` is one of the friction sets of the build's program
+    (`simulate --list-friction-sets`: the laws table); without a simulate in build_dir the node
+    checks it."""
+    for simulate in (os.path.join(build_dir, "devel", "lib", "nonsmooth_sim", "simulate"),
+                     os.path.join(build_dir, "bin", "simulate")):
+        if os.access(simulate, os.X_OK):
+            sets = subprocess.run([simulate, "--list-friction-sets"], check=True,
+                                  capture_output=True, text=True).stdout.split()
+            if name not in sets:
+                parser.error("--friction-set: %r is not one of %s" % (name, ", ".join(sets)))
+            return
 
 
 def fail(script, message):

@@ -43,7 +43,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
 
-SETS = ["coulomb", "cylinder", "ellipsoid", "sphere", "exact"]
+SETS = []  # the friction sets, filled in by main from `simulate --list-friction-sets`
 SOLVERS = ["jacobi", "modified_jacobi", "gauss_seidel"]
 SOLVER_SHORT = {"jacobi": "J (43)", "modified_jacobi": "MJ (46)", "gauss_seidel": "GS"}
 
@@ -103,8 +103,8 @@ def run_id(config):
         parts.append(config["gyroscopic"])
     if config.get("spin", 180.0) != 180.0:
         parts.append("spin%g" % config["spin"])
-    if config.get("direct"):
-        parts.append("direct")
+    if config.get("unmapped"):
+        parts.append("unmapped")
     parts.append("T%g" % config["duration"])
     return "_".join(parts).replace("+", "").replace("-", "m")
 
@@ -113,7 +113,7 @@ def make_config(kind, friction_set, solver, dt, tolerance, duration, **extra):
     config = {"kind": kind, "set": friction_set, "solver": solver, "dt": dt,
               "tolerance": tolerance, "duration": duration, "tolerance_abs": None,
               "max_iterations": None, "gyroscopic": "explicit", "spin": 180.0, "csv": True,
-              "direct": False}
+              "unmapped": False}
     config.update(extra)
     config["id"] = run_id(config)
     return config
@@ -140,8 +140,8 @@ def plan(grid):
             continue
         for dt in grid["dts"]:
             for tol in DIRECT_TOLERANCES:
-                runs.append(make_config("direct", s, "gauss_seidel", dt, tol, grid["duration"],
-                                        direct=True))
+                runs.append(make_config("unmapped", s, "gauss_seidel", dt, tol,
+                                        grid["duration"], unmapped=True))
     # explicit against implicit-midpoint gyroscopic term over dt*|omega| (sphere, default solver)
     for spin in grid["gyro_spins"]:
         for dt in grid["gyro_dts"]:
@@ -167,7 +167,7 @@ def estimated_cost(config):
     """Relative cost, to start the long runs first."""
     steps = config["duration"] / config["dt"]
     per_step = {"coulomb": 1.0, "sphere": 1.0, "ellipsoid": 10.0, "exact": 10.0,
-                "cylinder": 30.0}[config["set"]]
+                "cylinder": 30.0}.get(config["set"], 10.0)
     if config["solver"] == "jacobi":
         per_step *= 5.0
     return steps * per_step * (1.0 + 0.2 * -math.log10(config["tolerance"]))
@@ -215,8 +215,8 @@ def execute(simulate, config, out_dir):
         args += ["--tolerance-abs", repr(config["tolerance_abs"])]
     if config["max_iterations"] is not None:
         args += ["--max-iterations", str(config["max_iterations"])]
-    if config["direct"]:
-        args.append("--direct-drilling-sets")
+    if config["unmapped"]:
+        args.append("--unmapped-drilling-sets")
     with tempfile.TemporaryDirectory(dir=out_dir) as tmp:
         summary_path = os.path.join(tmp, "summary.json")
         args += ["--summary", summary_path]
@@ -514,10 +514,10 @@ def analyse(grid, records):
             row["ref_sensitivity_touchdown"] = (abs(alt["err_touchdown"] - row["err_touchdown"])
                                                 if math.isfinite(row["err_touchdown"]) else 0.0)
             rows.append(row)
-    direct = []
+    unmapped_rows = []
     for record in records.values():
         c = record["config"]
-        if c["kind"] != "direct" or c["set"] not in refs:
+        if c["kind"] != "unmapped" or c["set"] not in refs:
             continue
         summary = record["summary"]
         row = {"set": c["set"], "dt": c["dt"], "tolerance": c["tolerance"],
@@ -525,8 +525,8 @@ def analyse(grid, records):
                "max_iterations": summary["max_iterations"],
                "unconverged_steps": summary["unconverged_steps"], "steps": summary["steps"]}
         row.update(figures(record, refs[c["set"]]))
-        direct.append(row)
-    direct.sort(key=lambda r: (r["set"], -r["dt"], -r["tolerance"]))
+        unmapped_rows.append(row)
+    unmapped_rows.sort(key=lambda r: (r["set"], -r["dt"], -r["tolerance"]))
     if "exact" in refs:
         for s, ref in refs.items():
             cross[s] = figures(ref, refs["exact"])
@@ -534,7 +534,7 @@ def analyse(grid, records):
             cross[s]["cpu_time_s"] = unit_cost(ref["summary"])
     rows.sort(key=lambda r: (SETS.index(r["set"]), SOLVERS.index(r["solver"]), -r["dt"],
                              -r["tolerance"]))
-    return rows, checks, cross, refs, direct
+    return rows, checks, cross, refs, unmapped_rows
 
 
 def write_csv(rows, path):
@@ -582,7 +582,7 @@ def recommendation_lines(rows, grid, refs):
 
 
 def write_markdown(path, grid, rows, checks, cross, refs, gyro_rows, decoupled_rows, long_rows,
-                   command, elapsed, failures, pngs, records, direct):
+                   command, elapsed, failures, pngs, records, unmapped_rows):
     records_by_key = {(r["config"]["set"], r["config"]["solver"], r["config"]["dt"],
                        r["config"]["tolerance"]): r
                       for r in records.values() if r["config"]["kind"] == "grid"}
@@ -766,22 +766,22 @@ def write_markdown(path, grid, rows, checks, cross, refs, gyro_rows, decoupled_r
                 ", ".join("dt %g: %s" % (dt, fmt(d, 2)) for dt, d in sorted(jd, reverse=True))))
         L.append("")
 
-    # direct iteration of exact and cylinder
-    if direct:
+    # exact and cylinder iterated unmapped
+    if unmapped_rows:
         mapped = {(r["set"], r["dt"], r["tolerance"]): r for r in rows
                   if r["solver"] == "gauss_seidel"}
         L.append("## `exact` and `cylinder` iterated on their own sets")
         L.append("")
         L.append("`simulate` iterates B_F and C_F, like S_F, in the coordinates of the map A "
-                 "(40)-(47) by default; `--direct-drilling-sets` iterates them on their original "
+                 "(40)-(47) by default; `--unmapped-drilling-sets` iterates them on their original "
                  "sets (37), as the paper timed B_F. Gauss-Seidel; errors against the same law's "
                  "reference. The last columns are the default (mapped) run with the same dt and "
                  "tolerance.")
         L.append("")
-        L.append("| set | dt | tol | direct: CPU [s] | iterations mean / max | unconverged | θ err "
+        L.append("| set | dt | tol | unmapped: CPU [s] | iterations mean / max | unconverged | θ err "
                  "[rad] | touchdown err [s] | mapped: CPU [s] | iterations | θ err [rad] |")
         L.append("|---|---|---|---|---|---|---|---|---|---|---|")
-        for r in direct:
+        for r in unmapped_rows:
             m = mapped.get((r["set"], r["dt"], r["tolerance"]))
             L.append("| %s | %g | %g | %s | %s / %s | %s | %s | %s | %s | %s | %s |" % (
                 r["set"], r["dt"], r["tolerance"], fmt(r["cpu_time_s"]),
@@ -905,6 +905,9 @@ def main():
     args = parser.parse_args()
     # the report names the command that regenerates it, runs included
     args.command = args.command.replace(" --report-only", "")
+    # the friction sets, from the program (the laws table)
+    SETS[:] = subprocess.run([args.simulate, "--list-friction-sets"], check=True,
+                             capture_output=True, text=True).stdout.split()
     grid = FULL if args.grid == "full" else QUICK
     os.makedirs(args.out, exist_ok=True)
     os.makedirs(args.docs, exist_ok=True)
@@ -922,7 +925,7 @@ def main():
     wanted = {c["id"] for c in runs}
     records = {k: v for k, v in records.items() if k in wanted}
 
-    rows, checks, cross, refs, direct = analyse(grid, records)
+    rows, checks, cross, refs, unmapped_rows = analyse(grid, records)
     write_csv(rows, os.path.join(args.out, "runs.csv"))
 
     pngs = {}
@@ -964,7 +967,7 @@ def main():
     write_markdown(os.path.join(args.docs, "tradeoff.md"), grid, rows, checks, cross, refs,
                    gyro_rows, decoupled_rows, long_rows, args.command,
                    elapsed_total if args.report_only else elapsed, failures, pngs, records,
-                   direct)
+                   unmapped_rows)
     print("tradeoff: wrote %s, %s and %d plots" % (os.path.join(args.out, "runs.csv"),
                                                    os.path.join(args.docs, "tradeoff.md"),
                                                    len(pngs) + 2), file=sys.stderr)

@@ -12,6 +12,7 @@
 
 #include "nonsmooth_sim/core/all_finite.h"
 #include "nonsmooth_sim/core/ball_contact_solve.h"
+#include "nonsmooth_sim/core/enum_names.h"
 #include "nonsmooth_sim/core/transformation.h"
 
 namespace nonsmooth_sim {
@@ -33,32 +34,6 @@ bool IsFiniteNonNegative(double value) { return std::isfinite(value) && value >=
                               Describe(value));
 }
 
-bool IsKnown(FrictionSet set) { return FrictionSetName(set) != "unknown"; }
-bool IsKnown(SolverType type) { return SolverTypeName(type) != "unknown"; }
-
-// Euclidean prox onto the 3-D friction set (T1, T2, τ) of a 4-component contact, in the
-// coordinates the contact is iterated in (contact_solver.h, table of the iterated sets): Λ̂ = A⁻¹Λ
-// for sphere and, with map_drilling_sets, exact and cylinder; Λ otherwise. `set_rbar` is the R̄
-// of the iterated set: 1 for A⁻¹B_F and A⁻¹C_F, the law's R̄ for the original sets.
-// `rim_hint`: the warm start of B_F's prox (ContactWork::rim_hint).
-// Inlined into the iteration, as ScaledChange below: as calls they cost the Tippe-Top about 100
-// instructions per step (callgrind), 2 %, and 300 (5 %) with `exact`.
-[[gnu::always_inline]] inline Prox3 ProxFriction(FrictionSet set, const Eigen::Vector3d& z,
-                                                 double radius, double set_rbar, double* rim_hint) {
-  switch (set) {
-    // C_F (54), (37); or A⁻¹C_F = C_F with R̄ = 1, (40)-(47)
-    case FrictionSet::kCylinder: return ProxCylinder(z, radius, set_rbar);
-    // E_F (55) itself, (37): the paper's untransformed reference
-    case FrictionSet::kEllipsoid: return ProxEllipsoid(z, radius, set_rbar);
-    // S_F = A⁻¹E_F (57)-(59), (43)
-    case FrictionSet::kSphere: return ProxBall(z, radius);
-    // B_F (51)-(53), (37); or A⁻¹B_F = B_F with R̄ = 1, (40)-(47)
-    case FrictionSet::kExact: return ProxCoulombContensou(z, radius, set_rbar, rim_hint);
-    case FrictionSet::kCoulomb: break;  // 3-component contacts use the disk, see UpdateContact
-  }
-  const Prox2 disk = ProxDisk(z.head<2>(), radius);
-  return {Eigen::Vector3d(disk.point.x(), disk.point.y(), 0.0), disk.region};
-}
 
 struct ContactUpdate {
   Eigen::Vector4d next;  // Λ̂_i^{ν+1}, zero where the contact has no component
@@ -112,9 +87,13 @@ ContactUpdate UpdateContact(const ContactWork& w, const Eigen::Vector4d& lambda,
         &update.friction_projected, &update.friction_natural_step);
     return update;
   }
-  // (T1, T2, τ) on the law's set in the iterated coordinates (Λ̂ = A⁻¹Λ or Λ)
+  // (T1, T2, τ) on the law's set in the iterated coordinates (Λ̂ = A⁻¹Λ or Λ): its row's prox
+  // (friction_law.h), set_rbar the R̄ of the iterated set (1 on A⁻¹B_F, A⁻¹C_F), rim_hint the
+  // warm start of B_F's prox (ContactWork::rim_hint). Inlined, as ScaledChange below: as calls
+  // they cost the Tippe-Top about 100 instructions per step (callgrind), 2 %, and 300 (5 %) with
+  // `exact`.
   const auto set = [&w, radius, rim_hint](const Eigen::Vector3d& z) {
-    return ProxFriction(w.set, z, radius, w.set_rbar, rim_hint);
+    return ProxFrictionLaw(w.set, z, radius, w.set_rbar, rim_hint);
   };
   update.next.tail<3>() = UpdateFriction<kModified, Eigen::Vector3d>(
       lambda.tail<3>(), xi.tail<3>(), w.step.tail<3>(), r, set, &update.friction_projected,
@@ -185,20 +164,23 @@ constexpr std::size_t kMaxDirectContacts = 64;
 constexpr int kMaxDirectSweeps = 200;
 constexpr double kDirectSweepTolerance = 1e-13;
 
-// The iterated friction set of `w` as {||D⁻¹Λ̂_F|| ≤ μΛ̂_N}, if it is one: S_F (mapped, D = I),
-// E_F (D = diag(1, 1, R̄)), the disk of 3-component contacts; B_F and C_F are not balls.
-bool BallMetric(const ContactWork& w, Eigen::Vector3d* metric) {
+// The iterated friction set of `w` as {||D⁻¹Λ̂_F|| ≤ μΛ̂_N}, if it is one (its row's ball
+// metric, friction_law.h): the disk of 3-component contacts, S_F (mapped, D = I), E_F
+// (D = diag(1, 1, R̄)); B_F and C_F are not balls.
+bool BallMetricOf(const ContactWork& w, Eigen::Vector3d* metric) {
   *metric = Eigen::Vector3d::Ones();
-  if (w.dim < 4 || w.set == FrictionSet::kSphere) return true;
-  if (w.set != FrictionSet::kEllipsoid) return false;
-  metric->z() = w.set_rbar;
-  return true;
+  switch (LawOf(w.set).ball_metric) {
+    case BallMetric::kNone: return false;
+    case BallMetric::kUnit: return true;
+    case BallMetric::kDrillingRadius: metric->z() = w.set_rbar; return true;
+  }
+  return false;
 }
 
 }  // namespace
 
 void ValidateSolverOptions(const SolverOptions& options) {
-  if (!IsKnown(options.type)) {
+  if (!IsOneOf(options.type, kAllSolverTypes)) {
     throw std::invalid_argument("SolverOptions.type: must be one of " + SolverTypeNameList());
   }
   if (!IsFiniteNonNegative(options.tolerance_rel)) {
@@ -237,7 +219,7 @@ void ValidateContactProblem(const ContactProblem& problem) {
     if (!IsFiniteNonNegative(law.rbar)) {
       ThrowNotFiniteNonNegative(name() + ".law.rbar", " [m]", law.rbar);
     }
-    if (!IsKnown(law.friction_set)) {
+    if (!IsFrictionSet(law.friction_set)) {
       throw std::invalid_argument(name() + ".law.friction_set: must be one of " +
                                   FrictionSetNameList());
     }
@@ -428,7 +410,7 @@ void ContactSolver::ContinueDirectly(const SolverOptions& options, SolverStatist
   const int spent = statistics->iterations;
   Eigen::Vector3d metric;
   Eigen::Vector4d direct;
-  if (BallMetric(w, &metric) &&
+  if (BallMetricOf(w, &metric) &&
       SolveBallContact(g_hat_[0], c_hat_[0], w.dim, w.mu, metric, &direct)) {
     // from the direct solution, the iteration checks it with the stopping rule (one iteration
     // where it is the fixed point)
@@ -453,7 +435,7 @@ void ContactSolver::ContinueBlockDirectly(const SolverOptions& options,
   for (std::size_t i = 0; ball && i < m; ++i) {
     const ContactWork& w = work_[i];
     Eigen::Vector3d metric;
-    ball = BallMetric(w, &metric) && direct[i].Reset(g_hat_[i * m + i], w.dim, w.mu, metric);
+    ball = BallMetricOf(w, &metric) && direct[i].Reset(g_hat_[i * m + i], w.dim, w.mu, metric);
   }
   if (ball) {
     // block Gauss-Seidel: contact i solved directly against the others' current percussions
@@ -527,9 +509,9 @@ void ContactSolver::PrepareContact(std::size_t i, const ContactLaw& law,
   w.dim = ContactDimension(law);
   w.mu = law.mu;
   // with R̄ = 0 every law degenerates to the coulomb disk
-  w.set = w.dim == 4 ? law.friction_set : FrictionSet::kCoulomb;
+  w.set = w.dim == 4 ? law.friction_set : kPlanarFrictionSet;
   // A_i: (56) for sphere, and for exact and cylinder if options.map_drilling_sets (40)-(47)
-  w.scale = ContactMapDiagonal(law, options);
+  w.scale = ContactMapDiagonal(law, options.map_drilling_sets);
   // B_F, C_F and E_F scale linearly along τ: A⁻¹ maps the set with R̄ to the one with R̄/a_τ
   // (exactly 1 where a_τ = R̄)
   w.set_rbar = w.scale[3] == law.rbar ? 1.0 : law.rbar / w.scale[3];
@@ -671,5 +653,18 @@ void ContactSolver::Iterate(const SolverOptions& options, int max_iterations,
   statistics->residual = residual;
   statistics->max_change = max_change;
 }
+
+std::string_view SolverTypeName(SolverType type) {
+  switch (type) {
+    case SolverType::kJacobi: return "jacobi";
+    case SolverType::kModifiedJacobi: return "modified_jacobi";
+    case SolverType::kGaussSeidel: return "gauss_seidel";
+  }
+  return "";
+}
+std::optional<SolverType> SolverTypeFromName(std::string_view name) {
+  return EnumFromName(name, kAllSolverTypes, &SolverTypeName);
+}
+std::string SolverTypeNameList() { return EnumNameList(kAllSolverTypes, &SolverTypeName); }
 
 }  // namespace nonsmooth_sim

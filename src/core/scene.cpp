@@ -129,7 +129,7 @@ void ValidateLaw(const std::string& where, const ContactLaw& law) {
   if (!(law.restitution >= 0.0 && law.restitution <= 1.0)) {
     Reject(where + ".restitution", law.restitution, "in [0, 1]");
   }
-  if (FrictionSetName(law.friction_set) == "unknown") {
+  if (!IsFrictionSet(law.friction_set)) {
     throw std::invalid_argument(where + ".friction_set is not one of " + FrictionSetNameList());
   }
 }

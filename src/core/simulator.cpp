@@ -320,7 +320,7 @@ FrictionSet Simulator::FrictionSetOf(const std::string& name) const {
 }
 
 void Simulator::SetFrictionSet(FrictionSet set, const std::string& name) {
-  if (FrictionSetName(set) == "unknown") {
+  if (!IsFrictionSet(set)) {
     throw std::invalid_argument("friction set must be one of " + FrictionSetNameList());
   }
   if (name.empty()) {

@@ -1,9 +1,11 @@
-// The ranges of SimulatorOptions, see simulator_options.h.
+// The ranges of SimulatorOptions and the names of its choices, see simulator_options.h.
 #include "nonsmooth_sim/core/simulator_options.h"
 
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "nonsmooth_sim/core/enum_names.h"
 
 namespace nonsmooth_sim {
 namespace {
@@ -28,13 +30,36 @@ void ValidateSimulatorOptions(const SimulatorOptions& options) {
                                 "got " + std::to_string(options.solver.max_iterations));
   }
   ValidateSolverOptions(options.solver);
-  if (GyroscopicSchemeName(options.gyroscopic) == "unknown") {
+  if (!IsOneOf(options.gyroscopic, kAllGyroscopicSchemes)) {
     throw std::invalid_argument(
         "SimulatorOptions.gyroscopic must be kExplicit, kImplicitMidpoint or kAuto");
   }
-  if (IntegratorName(options.integrator) == "unknown") {
+  if (!IsOneOf(options.integrator, kAllIntegrators)) {
     throw std::invalid_argument("SimulatorOptions.integrator must be kMoreau or kMoreau2");
   }
+}
+
+std::string_view GyroscopicSchemeName(GyroscopicScheme scheme) {
+  switch (scheme) {
+    case GyroscopicScheme::kExplicit: return "explicit";
+    case GyroscopicScheme::kImplicitMidpoint: return "implicit_midpoint";
+    case GyroscopicScheme::kAuto: return "auto";
+  }
+  return "";
+}
+std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name) {
+  return EnumFromName(name, kAllGyroscopicSchemes, &GyroscopicSchemeName);
+}
+
+std::string_view IntegratorName(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kMoreau: return "moreau";
+    case Integrator::kMoreau2: return "moreau2";
+  }
+  return "";
+}
+std::optional<Integrator> IntegratorFromName(std::string_view name) {
+  return EnumFromName(name, kAllIntegrators, &IntegratorName);
 }
 
 }  // namespace nonsmooth_sim

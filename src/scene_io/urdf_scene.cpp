@@ -636,7 +636,7 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
                                 ": must be in [0, " + Format(kMaxLength) +
                                 "] [m] (and at most the size of every shape of a free body)");
   }
-  if (FrictionSetName(options.friction_set) == "unknown") {
+  if (!IsFrictionSet(options.friction_set)) {
     throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());
   }
 }

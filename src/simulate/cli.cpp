@@ -238,7 +238,8 @@ std::string UsageText() {
     << ")\n"
        "  --relaxation ALPHA    alpha of (43), in ["
     << kMinRelaxation << ", 2) (default 1)\n"
-       "  --direct-drilling-sets iterate exact and cylinder on their original sets (37), as the\n"
+       "  --unmapped-drilling-sets\n"
+       "                        iterate exact and cylinder on their original sets (37), as the\n"
        "                        paper timed B_F, instead of on the A-mapped sets (40)-(47)\n"
        "  --no-direct-solve     the iteration alone: no direct solve of ball-set contacts\n"
        "                        whose iteration has not converged after "
@@ -283,11 +284,21 @@ std::string UsageText() {
        "  --summary FILE        JSON summary\n"
        "  --decimate N          write every N-th step to the CSV (default 10)\n"
        "  --quiet               no report on stdout, no progress bar\n"
+       "  --list-friction-sets  print the friction set names, one per line, and exit\n"
        "  --help                this text\n"
        "Exit status: 0 ok, 1 an output file could not be written, 2 invalid command line,\n"
        "3 the state became non-finite (the run diverged; CSV and summary end at the last\n"
        "finite state, summary field \"state_finite\": false).\n";
   return s.str();
+}
+
+std::string FrictionSetsText() {
+  std::string text;
+  for (const FrictionLaw& law : kFrictionLaws) {
+    text += law.name;
+    text += '\n';
+  }
+  return text;
 }
 
 ParseResult ParseCommandLine(int argc, const char* const* argv) {
@@ -301,11 +312,12 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
     for (int k = 1; k < argc; ++k) {
       std::string arg = argv[k];
       if (arg == "--help" || arg == "-h") return HelpRequest{};
+      if (arg == "--list-friction-sets") return FrictionSetsRequest{};
       if (arg == "--quiet") {
         config.quiet = true;
         continue;
       }
-      if (arg == "--direct-drilling-sets") {
+      if (arg == "--unmapped-drilling-sets") {
         config.options.solver.map_drilling_sets = false;
         continue;
       }

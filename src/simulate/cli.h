@@ -31,15 +31,19 @@ struct RunConfig {
   bool quiet = false;                ///< no stdout report, no progress bar
 };
 
-/// What the command line asks for: a run, the help text, or an error message (exit code 2).
+/// What the command line asks for: a run, the help text, the friction set names, or an error
+/// message (exit code 2).
 struct HelpRequest {};
+struct FrictionSetsRequest {};
 struct UsageError {
   std::string message;
 };
-using ParseResult = std::variant<RunConfig, HelpRequest, UsageError>;
+using ParseResult = std::variant<RunConfig, HelpRequest, FrictionSetsRequest, UsageError>;
 
 ParseResult ParseCommandLine(int argc, const char* const* argv);
 std::string UsageText();
+/// The friction set names (the laws table, core/friction_law.h), one per line.
+std::string FrictionSetsText();
 
 }  // namespace nonsmooth_sim::simulate
 

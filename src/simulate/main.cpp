@@ -307,6 +307,10 @@ int main(int argc, char** argv) {
     std::fputs(UsageText().c_str(), stdout);
     return kExitOk;
   }
+  if (std::holds_alternative<FrictionSetsRequest>(parsed)) {
+    std::fputs(FrictionSetsText().c_str(), stdout);
+    return kExitOk;
+  }
   if (const auto* error = std::get_if<UsageError>(&parsed)) {
     std::fprintf(stderr, "simulate: %s\n", error->message.c_str());
     return kExitUsage;

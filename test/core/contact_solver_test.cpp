@@ -26,7 +26,7 @@
 
 #include "allocation_counter.h"  // the NoHeapAllocation tests: the heap allocation count
 #include "nonsmooth_sim/core/ball_contact_solve.h"
-#include "nonsmooth_sim/core/transformation.h"
+#include "dense_transformation.h"  // ContactMapDiagonal, ProblemMapDiagonal
 
 namespace nonsmooth_sim {
 namespace {
@@ -1167,7 +1167,7 @@ TEST(BadlyScaled, ModifiedIterationSolvesADiagonalStictionProblemInOneStep) {
 
 // ======================= exact and cylinder on A⁻¹D (40)-(47) vs on D (37) =======================
 
-SolverOptions Direct(SolverOptions options) {
+SolverOptions Unmapped(SolverOptions options) {
   options.map_drilling_sets = false;
   return options;
 }
@@ -1176,24 +1176,24 @@ TEST(MappedDrillingSets, TheMapFollowsTheOption) {
   const double rbar = 3e-4;
   SolverOptions mapped;
   ASSERT_TRUE(mapped.map_drilling_sets);  // the documented default
-  const SolverOptions direct = Direct(mapped);
+  const SolverOptions unmapped = Unmapped(mapped);
   for (FrictionSet set : kAllFrictionSets) {
     const ContactLaw law = MakeLaw(set, 0.3, rbar);
     const bool drilling = ContactDimension(law) == 4;
     const Eigen::Vector4d a(1.0, 1.0, 1.0, rbar);
     const bool maps_with_option = set == FrictionSet::kExact || set == FrictionSet::kCylinder;
-    EXPECT_EQ(ContactMapDiagonal(law, mapped),
+    EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/true),
               drilling && (maps_with_option || set == FrictionSet::kSphere) ? a
                                                                            : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
-    EXPECT_EQ(ContactMapDiagonal(law, direct),
+    EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/false),
               drilling && set == FrictionSet::kSphere ? a : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
     // the one-argument form is the paper's choice: only sphere
-    EXPECT_EQ(ContactMapDiagonal(law), ContactMapDiagonal(law, direct)) << FrictionSetName(set);
+    EXPECT_EQ(ContactMapDiagonal(law), ContactMapDiagonal(law, false)) << FrictionSetName(set);
     // R̄ = 0 or μ = 0: no drilling component, nothing mapped
-    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.3, 0.0), mapped), Eigen::Vector4d::Ones());
-    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.0, rbar), mapped), Eigen::Vector4d::Ones());
+    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.3, 0.0), true), Eigen::Vector4d::Ones());
+    EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.0, rbar), true), Eigen::Vector4d::Ones());
   }
   // stacked: exact (4), frictionless (1), cylinder (4), ellipsoid (4)
   ContactProblem problem;
@@ -1206,7 +1206,7 @@ TEST(MappedDrillingSets, TheMapFollowsTheOption) {
   Eigen::VectorXd expected(13);
   expected << 1, 1, 1, rbar, 1, 1, 1, 1, 2 * rbar, 1, 1, 1, 1;
   EXPECT_EQ(ProblemMapDiagonal(problem, mapped), expected);
-  EXPECT_EQ(ProblemMapDiagonal(problem, direct), Eigen::VectorXd::Ones(13));
+  EXPECT_EQ(ProblemMapDiagonal(problem, unmapped), Eigen::VectorXd::Ones(13));
 }
 
 TEST(MappedDrillingSets, InverseMappedSetsAreTheSetsWithUnitRbar) {
@@ -1256,9 +1256,9 @@ TEST(MappedDrillingSets, OneJacobiStepOnTheMappedSetIsExactForAUnitScaledDiagona
     FrictionSet set;
     Eigen::Vector4d c;
     Eigen::Vector4d mapped_first;  // = the solution
-    Eigen::Vector4d direct_first;
+    Eigen::Vector4d unmapped_first;
   };
-  const double r = 1.0 / 400.0;  // direct: α / max_k G_kk
+  const double r = 1.0 / 400.0;  // unmapped: α / max_k G_kk
   const std::vector<Case> cases = {
       {FrictionSet::kCylinder, Eigen::Vector4d(-1.0, 0.5, 0.0, 10.0),
        Eigen::Vector4d(1.0, -0.3, 0.0, -0.3 * rbar),
@@ -1279,36 +1279,36 @@ TEST(MappedDrillingSets, OneJacobiStepOnTheMappedSetIsExactForAUnitScaledDiagona
     EXPECT_LT((lambda - test.mapped_first).cwiseAbs().maxCoeff(), 1e-15)
         << FrictionSetName(test.set) << " mapped: " << lambda.transpose();
     lambda.setZero();
-    solver.Solve(problem, Direct(options), &lambda);
-    EXPECT_LT((lambda - test.direct_first).cwiseAbs().maxCoeff(), 1e-15)
-        << FrictionSetName(test.set) << " direct: " << lambda.transpose();
+    solver.Solve(problem, Unmapped(options), &lambda);
+    EXPECT_LT((lambda - test.unmapped_first).cwiseAbs().maxCoeff(), 1e-15)
+        << FrictionSetName(test.set) << " unmapped: " << lambda.transpose();
     // to convergence: the mapped iteration confirms the first iterate, every scheme
     for (SolverType type : kAllSolverTypes) {
       ContactSolver full;
       Eigen::VectorXd mapped = Eigen::VectorXd::Zero(4);
-      Eigen::VectorXd direct = Eigen::VectorXd::Zero(4);
+      Eigen::VectorXd unmapped = Eigen::VectorXd::Zero(4);
       const SolverStatistics mapped_stats = full.Solve(problem, Tight(type), &mapped);
-      const SolverStatistics direct_stats = full.Solve(problem, Direct(Tight(type)), &direct);
-      ASSERT_TRUE(mapped_stats.converged && direct_stats.converged) << SolverTypeName(type);
+      const SolverStatistics unmapped_stats = full.Solve(problem, Unmapped(Tight(type)), &unmapped);
+      ASSERT_TRUE(mapped_stats.converged && unmapped_stats.converged) << SolverTypeName(type);
       const std::string what =
           std::string(FrictionSetName(test.set)) + " " + std::string(SolverTypeName(type));
       EXPECT_EQ(mapped_stats.iterations, 2) << what;
-      // direct, the tangential components (where c_T ≠ 0) crawl at 1 - G_TT/G_ττ per iteration,
+      // unmapped, the tangential components (where c_T ≠ 0) crawl at 1 - G_TT/G_ττ per iteration,
       // under (43) also the normal one; under (46) pure spin is solved at once there too (Λ_N
       // steps 1/G_NN, and the first z_τ already leaves the set: the pole)
       if (type == SolverType::kJacobi || test.c[1] != 0.0) {
-        EXPECT_GT(direct_stats.iterations, 100) << what;
+        EXPECT_GT(unmapped_stats.iterations, 100) << what;
       } else {
-        EXPECT_EQ(direct_stats.iterations, 2) << what;
+        EXPECT_EQ(unmapped_stats.iterations, 2) << what;
       }
       EXPECT_LT((mapped - test.mapped_first).cwiseAbs().maxCoeff(), 1e-15);
-      EXPECT_TRUE(NearSolution(problem, direct, test.mapped_first, 1e-10)) << direct.transpose();
-      EXPECT_TRUE(mapped_stats.friction_projected[0] && direct_stats.friction_projected[0]);
+      EXPECT_TRUE(NearSolution(problem, unmapped, test.mapped_first, 1e-10)) << unmapped.transpose();
+      EXPECT_TRUE(mapped_stats.friction_projected[0] && unmapped_stats.friction_projected[0]);
     }
   }
 }
 
-// exact and cylinder laws, and now and then one of the others, for the mapped-vs-direct checks
+// exact and cylinder laws, and now and then one of the others, for the mapped-vs-unmapped checks
 std::vector<ContactLaw> DrillingLaws(int m, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<ContactLaw> laws;
@@ -1325,25 +1325,25 @@ std::vector<ContactLaw> DrillingLaws(int m, std::mt19937_64& rng) {
   return laws;
 }
 
-// Solves `problem` mapped (default) and direct with the same options; both must converge, agree
+// Solves `problem` mapped (default) and unmapped with the same options; both must converge, agree
 // to `tolerance` (NearSolution) and report the same projections. Adds the sliding exact/cylinder
 // contacts to *sliding.
-void ExpectMappedEqualsDirect(const ContactProblem& problem, const SolverOptions& options,
+void ExpectMappedEqualsUnmapped(const ContactProblem& problem, const SolverOptions& options,
                               double tolerance, const std::string& what, int* sliding,
                               Eigen::VectorXd* solution = nullptr) {
   ASSERT_TRUE(options.map_drilling_sets);
   ContactSolver solver;
   Eigen::VectorXd mapped = Eigen::VectorXd::Zero(problem.c.size());
-  Eigen::VectorXd direct = mapped;
+  Eigen::VectorXd unmapped = mapped;
   const SolverStatistics mapped_stats = solver.Solve(problem, options, &mapped);
-  const SolverStatistics direct_stats = solver.Solve(problem, Direct(options), &direct);
+  const SolverStatistics unmapped_stats = solver.Solve(problem, Unmapped(options), &unmapped);
   if (solution != nullptr) *solution = mapped;
-  ASSERT_TRUE(mapped_stats.converged && direct_stats.converged)
+  ASSERT_TRUE(mapped_stats.converged && unmapped_stats.converged)
       << what << ": " << Describe(problem) << " iterations " << mapped_stats.iterations << " / "
-      << direct_stats.iterations;
-  EXPECT_TRUE(NearSolution(problem, mapped, direct, tolerance)) << what;
-  EXPECT_EQ(mapped_stats.friction_projected, direct_stats.friction_projected) << what;
-  EXPECT_EQ(mapped_stats.normal_projected, direct_stats.normal_projected) << what;
+      << unmapped_stats.iterations;
+  EXPECT_TRUE(NearSolution(problem, mapped, unmapped, tolerance)) << what;
+  EXPECT_EQ(mapped_stats.friction_projected, unmapped_stats.friction_projected) << what;
+  EXPECT_EQ(mapped_stats.normal_projected, unmapped_stats.normal_projected) << what;
   for (std::size_t i = 0; i < problem.contacts.size(); ++i) {
     const ContactLaw& law = problem.contacts[i].law;
     const bool drilling_set =
@@ -1354,7 +1354,7 @@ void ExpectMappedEqualsDirect(const ContactProblem& problem, const SolverOptions
   }
 }
 
-TEST(MappedDrillingSets, SameSolutionAndProjectionsAsDirectOnConstructedProblems) {
+TEST(MappedDrillingSets, SameSolutionAndProjectionsAsUnmappedOnConstructedProblems) {
   std::mt19937_64 rng(kSeed + 9);
   int sliding = 0;
   for (int trial = 0; trial < 60; ++trial) {
@@ -1365,7 +1365,7 @@ TEST(MappedDrillingSets, SameSolutionAndProjectionsAsDirectOnConstructedProblems
                                std::string(SolverTypeName(type)) + " " +
                                Describe(constructed.problem, constructed.regimes);
       Eigen::VectorXd mapped;
-      ExpectMappedEqualsDirect(constructed.problem, Convergent(type, constructed.problem), 1e-9,
+      ExpectMappedEqualsUnmapped(constructed.problem, Convergent(type, constructed.problem), 1e-9,
                                what, &sliding, &mapped);
       EXPECT_TRUE(NearSolution(constructed.problem, mapped, constructed.solution, 1e-8)) << what;
     }
@@ -1373,7 +1373,7 @@ TEST(MappedDrillingSets, SameSolutionAndProjectionsAsDirectOnConstructedProblems
   EXPECT_GT(sliding, 60);
 }
 
-TEST(MappedDrillingSets, SameSolutionAndProjectionsAsDirectOnRandomProblems) {
+TEST(MappedDrillingSets, SameSolutionAndProjectionsAsUnmappedOnRandomProblems) {
   std::mt19937_64 rng(kSeed + 10);
   int sliding = 0;
   for (int trial = 0; trial < 60; ++trial) {
@@ -1383,7 +1383,7 @@ TEST(MappedDrillingSets, SameSolutionAndProjectionsAsDirectOnRandomProblems) {
       const std::string what = "trial " + std::to_string(trial) + " " +
                                std::string(SolverTypeName(type)) + " " + Describe(problem);
       Eigen::VectorXd mapped;
-      ExpectMappedEqualsDirect(problem, Convergent(type, problem), 1e-9, what, &sliding, &mapped);
+      ExpectMappedEqualsUnmapped(problem, Convergent(type, problem), 1e-9, what, &sliding, &mapped);
       EXPECT_TRUE(SatisfiesInclusion(problem, mapped, 1e-7)) << what;
     }
   }
@@ -1433,7 +1433,7 @@ TEST(MappedDrillingSets, TippeTopSlidingContactNeedsFarFewerIterationsMapped) {
   // G_ττ ≫ G_TT on the original sets: the projecting step α/G_ττ crawls; mapped, Ĝ_ττ = R̄²G_ττ
   // is the smallest diagonal entry and the step is α/max(Ĝ_NN, Ĝ_TT). The inclinations of the
   // rising phase (the run starts at θ = 0.1); cold start, tolerance 1e-10 (measured: 5 mapped
-  // against 184 / 52 direct at θ = 0.1 / 0.5; the ratio shrinks as the slip grows with θ, at
+  // against 184 / 52 unmapped at θ = 0.1 / 0.5; the ratio shrinks as the slip grows with θ, at
   // θ = 1.2 it is 6 against 31)
   for (double inclination : {0.1, 0.3, 0.5}) {
     for (FrictionSet set : {FrictionSet::kExact, FrictionSet::kCylinder}) {
@@ -1450,18 +1450,18 @@ TEST(MappedDrillingSets, TippeTopSlidingContactNeedsFarFewerIterationsMapped) {
                                  std::string(SolverTypeName(type));
         ContactSolver solver;
         Eigen::VectorXd mapped = Eigen::VectorXd::Zero(4);
-        Eigen::VectorXd direct = mapped;
+        Eigen::VectorXd unmapped = mapped;
         const SolverStatistics mapped_stats = solver.Solve(problem, options, &mapped);
-        const SolverStatistics direct_stats = solver.Solve(problem, Direct(options), &direct);
-        ASSERT_TRUE(mapped_stats.converged && direct_stats.converged) << what;
-        EXPECT_TRUE(mapped_stats.friction_projected[0] && direct_stats.friction_projected[0])
+        const SolverStatistics unmapped_stats = solver.Solve(problem, Unmapped(options), &unmapped);
+        ASSERT_TRUE(mapped_stats.converged && unmapped_stats.converged) << what;
+        EXPECT_TRUE(mapped_stats.friction_projected[0] && unmapped_stats.friction_projected[0])
             << what;
-        EXPECT_GE(direct_stats.iterations, 5 * mapped_stats.iterations)
-            << what << ": mapped " << mapped_stats.iterations << ", direct "
-            << direct_stats.iterations;
+        EXPECT_GE(unmapped_stats.iterations, 5 * mapped_stats.iterations)
+            << what << ": mapped " << mapped_stats.iterations << ", unmapped "
+            << unmapped_stats.iterations;
         // sliding and drilling: both friction parts are active
         EXPECT_GT(std::abs(mapped[3]), 1e-3 * problem.contacts[0].law.rbar * 0.3 * mapped[0]);
-        EXPECT_TRUE(NearSolution(problem, mapped, direct, 1e-7)) << what;
+        EXPECT_TRUE(NearSolution(problem, mapped, unmapped, 1e-7)) << what;
         EXPECT_TRUE(SatisfiesInclusion(problem, mapped, 1e-7)) << what;
       }
     }

@@ -1,4 +1,5 @@
-// Section 4 of Möller, Leine, Glocker (ESMC 2009) checked numerically with transformation.h:
+// Section 4 of Möller, Leine, Glocker (ESMC 2009) checked numerically with the maps of
+// dense_transformation.h and transformation.h:
 // the normal cone map (20)/(25), the prox identity (23)/(31) under R = A⁻ᵀR̂A⁻¹ (29), and on a
 // fixed-point problem that the AᵀA-norm prox of (38) is not the Euclidean one while (40) has the
 // fixed point of (36).
@@ -6,7 +7,7 @@
 // The reference projections are independent of the library: prox in an S-norm onto an ellipsoid
 // {y : ||By|| ≤ ρ} from its Lagrange condition S(y - v) + μBᵀBy = 0, with μ ≥ 0 found by
 // bisection on the monotone ||By(μ)||; boxes are checked through their vertices.
-#include "nonsmooth_sim/core/transformation.h"
+#include "dense_transformation.h"
 
 #include <gtest/gtest.h>
 

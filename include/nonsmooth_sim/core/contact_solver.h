@@ -129,36 +129,22 @@
 #define NONSMOOTH_SIM_CORE_CONTACT_SOLVER_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "nonsmooth_sim/core/force_sets.h"
+#include "nonsmooth_sim/core/friction_law.h"
 
 namespace nonsmooth_sim {
 
-/// The force law of one contact.
-struct ContactLaw {
-  double mu = 0.3;           ///< friction coefficient, ≥ 0; 0 = frictionless (no tangential part)
-  double rbar = 0.0;         ///< average friction radius R̄ = 3πR/16 (50) [m], ≥ 0; 0 = no drilling
-  double restitution = 0.0;  ///< Newton's ε (14), in [0, 1]
-  FrictionSet friction_set = FrictionSet::kSphere;
-};
-
-/// Number of percussion components a contact with this law has: 1 (frictionless, μ = 0), 3 (normal
-/// and two tangential: coulomb, or R̄ = 0) or 4 (with the drilling component). Inline: the step
-/// asks it several times per contact.
-inline int ContactDimension(const ContactLaw& law) {
-  if (!(law.mu > 0.0)) return 1;
-  if (law.friction_set == FrictionSet::kCoulomb || !(law.rbar > 0.0)) return 3;
-  return 4;
-}
-
 /// Solver iteration scheme.
 enum class SolverType { kJacobi, kModifiedJacobi, kGaussSeidel };
-/// "jacobi", "modified_jacobi", "gauss_seidel".
+inline constexpr std::array<SolverType, 3> kAllSolverTypes = {
+    SolverType::kJacobi, SolverType::kModifiedJacobi, SolverType::kGaussSeidel};
+/// "jacobi", "modified_jacobi", "gauss_seidel"; "" for a value not in kAllSolverTypes.
 std::string_view SolverTypeName(SolverType type);
 std::optional<SolverType> SolverTypeFromName(std::string_view name);
 std::string SolverTypeNameList();
@@ -287,7 +273,7 @@ struct ContactWork {
   /// the warm start of the next (ProxCoulombContensou); from SolvePrevalidated's `rim_hints`
   double rim_hint = 0.0;
   int dim = 1;
-  FrictionSet set = FrictionSet::kCoulomb;  ///< kCoulomb for every 3-component contact
+  FrictionSet set = kPlanarFrictionSet;  ///< kPlanarFrictionSet for every 3-component contact
   bool normal_projected = false;
   bool friction_projected = false;
   /// (46): the last iteration accepted the friction block's per-component step y (s_k = 1)

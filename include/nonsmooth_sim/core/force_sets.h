@@ -19,36 +19,9 @@
 #define NONSMOOTH_SIM_CORE_FORCE_SETS_H_
 
 #include <Eigen/Core>
-#include <array>
 #include <cmath>
-#include <optional>
-#include <string>
-#include <string_view>
 
 namespace nonsmooth_sim {
-
-/// The friction laws of a contact. The names returned by FrictionSetName() are the ones used
-/// everywhere (command line, ROS parameters and services, benchmark JSON).
-enum class FrictionSet {
-  kCoulomb,    ///< "coulomb": planar Coulomb disk ||Λ_T|| ≤ μΛ_N, no drilling component.
-  kCylinder,   ///< "cylinder": C_F (54), drilling decoupled from sliding.
-  kEllipsoid,  ///< "ellipsoid": E_F (55), prox on the ellipsoid itself (37).
-  kSphere,     ///< "sphere": E_F solved through the map A (56) onto the ball S_F (58), (40)-(47).
-  kExact,      ///< "exact": the Coulomb-Contensou set B_F (51)-(53).
-};
-
-inline constexpr std::array<FrictionSet, 5> kAllFrictionSets = {
-    FrictionSet::kCoulomb, FrictionSet::kCylinder, FrictionSet::kEllipsoid, FrictionSet::kSphere,
-    FrictionSet::kExact};
-
-/// "coulomb", "cylinder", "ellipsoid", "sphere" or "exact".
-std::string_view FrictionSetName(FrictionSet set);
-/// Inverse of FrictionSetName(); std::nullopt for an unknown name.
-std::optional<FrictionSet> FrictionSetFromName(std::string_view name);
-/// "coulomb, cylinder, ellipsoid, sphere, exact" (for error messages).
-std::string FrictionSetNameList();
-/// True for the sets with a drilling component (all but coulomb).
-constexpr bool HasDrillingComponent(FrictionSet set) { return set != FrictionSet::kCoulomb; }
 
 /// Which part of the set the projected point came from.
 enum class ProxRegion {

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "nonsmooth_sim/core/contact_solver.h"
+#include "nonsmooth_sim/core/friction_law.h"
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
 #include "nonsmooth_sim/core/scene.h"
 

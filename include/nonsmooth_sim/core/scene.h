@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "nonsmooth_sim/core/contact_solver.h"
+#include "nonsmooth_sim/core/friction_law.h"
 #include "nonsmooth_sim/core/shape.h"
 
 namespace nonsmooth_sim {

@@ -3,6 +3,7 @@
 #ifndef NONSMOOTH_SIM_CORE_SIMULATOR_OPTIONS_H_
 #define NONSMOOTH_SIM_CORE_SIMULATOR_OPTIONS_H_
 
+#include <array>
 #include <optional>
 #include <string_view>
 
@@ -19,6 +20,9 @@ enum class GyroscopicScheme {
                      ///< for every body, kImplicitMidpoint for a step where a body exceeds it (a
                      ///< run that stays below is bit-identical to kExplicit)
 };
+inline constexpr std::array<GyroscopicScheme, 3> kAllGyroscopicSchemes = {
+    GyroscopicScheme::kExplicit, GyroscopicScheme::kImplicitMidpoint, GyroscopicScheme::kAuto};
+/// "explicit", "implicit_midpoint", "auto"; "" for a value not in kAllGyroscopicSchemes.
 std::string_view GyroscopicSchemeName(GyroscopicScheme scheme);
 std::optional<GyroscopicScheme> GyroscopicSchemeFromName(std::string_view name);
 
@@ -32,6 +36,9 @@ enum class Integrator {
              ///< one acts against the midpoint velocity; the gyroscopic term by the implicit
              ///< midpoint rule; a contact that closes (an impact) as in kMoreau
 };
+inline constexpr std::array<Integrator, 2> kAllIntegrators = {Integrator::kMoreau,
+                                                              Integrator::kMoreau2};
+/// "moreau", "moreau2"; "" for a value not in kAllIntegrators.
 std::string_view IntegratorName(Integrator integrator);
 std::optional<Integrator> IntegratorFromName(std::string_view name);
 

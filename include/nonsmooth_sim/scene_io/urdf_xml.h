@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "nonsmooth_sim/core/force_sets.h"
+#include "nonsmooth_sim/core/friction_law.h"
 #include "nonsmooth_sim/core/shape.h"
 
 namespace nonsmooth_sim::scene_io {

@@ -13,6 +13,12 @@ namespace {
 // the solver tolerance is tighter: below it the change is round-off.
 constexpr double kGyroscopicRoundOff = 4.0 * std::numeric_limits<double>::epsilon();
 
+// Whether the law's prox carries its own warm start from step to step (its row's warm-start kind,
+// friction_law.h): B_F's last foot point.
+bool CarriesRimHint(const ContactLaw& law) {
+  return LawIs<&FrictionLaw::warm_start, WarmStartKind::kPercussionAndRimHint>(law.friction_set);
+}
+
 }  // namespace
 
 void IslandProblem::ApplyImpulses(const Islands& islands, std::size_t index,
@@ -57,7 +63,7 @@ void IslandProblem::RememberSolve(ClosedContact* contact, const Eigen::Vector4d&
   memory.percussion_before2 = memory.percussion_before;
   memory.percussion_before = memory.percussion;
   memory.percussion = percussion;
-  if (c.report.law.friction_set == FrictionSet::kExact) memory.rim_hint = rim_hint;
+  if (CarriesRimHint(c.report.law)) memory.rim_hint = rim_hint;
   memory.closed_before2 = memory.closed_before;
   memory.closed_before = memory.closed_step;
   memory.closed_step = step;
@@ -69,7 +75,7 @@ bool IslandProblem::SolveLoneContact(const Model& model, const SimulatorOptions&
   const ContactMemory& memory = *c.memory;
   const long step = data->step;
   Eigen::Vector4d lambda = WarmStart(memory, step, options.extrapolate_warm_start);
-  const bool exact = c.report.law.friction_set == FrictionSet::kExact;
+  const bool rim_hinted = CarriesRimHint(c.report.law);
   double rim_hint =
       memory.closed_step == step - 1 ? memory.rim_hint : std::numeric_limits<double>::quiet_NaN();
   const Eigen::Matrix4d G = DelassusBlock(model.inertia, c, c);
@@ -78,7 +84,7 @@ bool IslandProblem::SolveLoneContact(const Model& model, const SimulatorOptions&
   const Eigen::Vector4d free_velocity = FreeContactVelocity(data->body, c);
   if (!AllFinite(free_velocity)) return false;
   solver_.SolveOnePrevalidated(G, free_velocity, c.report.law, options.solver, &lambda,
-                               &island_stats_, exact ? &rim_hint : nullptr);
+                               &island_stats_, rim_hinted ? &rim_hint : nullptr);
   // (18) on its one or two bodies
   for (const ContactSide& side : c.jacobian.side) {
     if (side.body < 0) continue;
@@ -129,7 +135,7 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   bool extrapolating = options.extrapolate_warm_start;
   for (int k = 0; m > 1 && k < m && extrapolating; ++k) extrapolating = slid(k);
   // B_F's exact prox is warm-started too (its hint); other sets have none to carry
-  bool any_exact = false;
+  bool any_rim_hint = false;
   const bool second_order = data->second_order;
   for (int k = 0; k < m; ++k) {
     ClosedContact& c = contact(k);
@@ -137,7 +143,7 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
     c.friction_midpoint = second_order && c.report.dimension > 1 &&
                           c.memory->closed_step == step - 1 && c.memory->sliding;
     problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
-    any_exact = any_exact || c.report.law.friction_set == FrictionSet::kExact;
+    any_rim_hint = any_rim_hint || CarriesRimHint(c.report.law);
     lambda_[static_cast<std::size_t>(k)] = WarmStart(*c.memory, step, extrapolating);
     rim_hints_[static_cast<std::size_t>(k)] = c.memory->closed_step == step - 1
                                                   ? c.memory->rim_hint
@@ -178,7 +184,7 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
     // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
     // options were validated when set
     solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
-                              any_exact ? &rim_hints_ : nullptr);
+                              any_rim_hint ? &rim_hints_ : nullptr);
     total_iterations += island_stats_.iterations;
     if (second_order) {
       // kMoreau2: a contact that slid and now sticks has its law on the end velocity instead
@@ -194,7 +200,7 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
       if (again) {
         for (int k = 0; k < m; ++k) problem_.c[static_cast<std::size_t>(k)] = free_velocity(k);
         solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
-                                  any_exact ? &rim_hints_ : nullptr);
+                                  any_rim_hint ? &rim_hints_ : nullptr);
         total_iterations += island_stats_.iterations;
       }
     }
