@@ -79,6 +79,7 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_world_test)
   nonsmooth_sim_rostest(node_spawn_test)
   nonsmooth_sim_rostest(node_fuzz_test)
+  nonsmooth_sim_rostest(node_bounds_test)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

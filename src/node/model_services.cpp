@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "nonsmooth_sim/node/simulation_node.h"
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "world_frames.h"
 
@@ -55,33 +56,94 @@ Scene PlacedModel(Scene scene, const std::string& prefix, const Eigen::Isometry3
 
 }  // namespace
 
+// The parameter namespace of a spawned model's URDF (robot_namespace, empty: the model's name): it
+// must resolve to the model's own namespace or one under it, so that no model reaches "/", a
+// global parameter (/rosdistro, /use_sim_time, the start-up robot_description) or another model's
+// namespace; and the master must not hold a value there that setting the URDF would replace.
+// Talks to the master: call it without the simulator mutex.
+std::string SimulationNode::ModelNamespace(const std::string& model_name,
+                                           const std::string& robot_namespace) const {
+  const std::string own = nh_.resolveName(model_name);
+  std::string ns = own;
+  if (!robot_namespace.empty()) {
+    std::string why;
+    Check(ros::names::validate(robot_namespace, why),
+          "robot_namespace \"" + robot_namespace + "\": " + why);
+    Check(robot_namespace.front() != '~',
+          "robot_namespace \"" + robot_namespace + "\": a private name is not allowed");
+    ns = nh_.resolveName(robot_namespace);
+  }
+  Check(ns == own || ns.rfind(own + "/", 0) == 0,
+        "robot_namespace \"" + robot_namespace + "\" resolves to " + ns +
+            ": must be the model's own namespace " + own + " or one under it (never /, a global "
+            "parameter or another model's namespace)");
+  const std::string description = ros::names::append(ns, "robot_description");
+  Check(!nh_.hasParam(description),
+        "the parameter " + description + " exists already (set by someone else: deleting the "
+        "model would remove it); choose another robot_namespace");
+  XmlRpc::XmlRpcValue value;
+  for (std::string part = ns; part.size() > 1; part = part.substr(0, part.rfind('/'))) {
+    if (!nh_.getParam(part, value)) continue;
+    Check(value.getType() == XmlRpc::XmlRpcValue::TypeStruct,
+          "the parameter " + part + " holds a value, not a namespace: setting " + description +
+              " would replace it; choose another model_name or robot_namespace");
+    break;  // a namespace: the ones above it are namespaces too
+  }
+  return description;
+}
+
 bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Response& res) {
-  const auto lock = LockForService();
   std::vector<std::string> warnings;
+  std::string description;
+  UrdfScene urdf;
+  // the checks that need neither the simulator nor its mutex: names, the size of the URDF, the
+  // namespace (the master), the URDF parsed
   try {
+    scene_io::CheckNameLength("model_name", req.model_name);
     Check(!req.model_name.empty() && GraphName(req.model_name) == req.model_name,
           "model_name \"" + req.model_name +
               "\": must be letters, digits and '_', not starting with a digit (it prefixes the "
               "model's TF frames and collision names)");
+    Check(req.model_xml.size() <= parameters_.scene.max_bytes,
+          "model_xml has " + std::to_string(req.model_xml.size()) +
+              " bytes, more than the bound ~max_urdf_bytes = " +
+              scene_io::DescribeBytes(parameters_.scene.max_bytes) + " (refused before parsing)");
+    scene_io::CheckNameLength("robot_namespace", req.robot_namespace);
+    description = ModelNamespace(req.model_name, req.robot_namespace);
+    UrdfSceneOptions options = parameters_.scene;  // the node's ~gravity, ~mu, ~friction_set, ...
+    options.ground = false;                        // the world has its ground already
+    urdf = SceneFromUrdf(req.model_xml, options);  // one-line reasons, as at start-up
+    Check(!urdf.scene.bodies.empty() || !urdf.scene.colliders.empty(),
+          "model_xml has neither a free body nor a collision: nothing to spawn");
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.status_message = std::string(e.what()) + "; nothing changed";
+    return true;
+  }
+  const auto lock = LockForService();
+  try {
     Check(ModelIndex(req.model_name) < 0,
           "model_name \"" + req.model_name + "\" exists already (~delete_model it first)");
-    const std::string ns = req.robot_namespace.empty() ? req.model_name : req.robot_namespace;
-    std::string why;
-    Check(ros::names::validate(ns, why), "robot_namespace \"" + ns + "\": " + why);
     const Frame reference =
         BodyFrame(*sim_, ReferenceBody(req.reference_frame, "reference_frame"));
     const Eigen::Isometry3d placement = Placement(reference, req.initial_pose);
-
-    UrdfSceneOptions options = parameters_.scene;  // the node's ~gravity, ~mu, ~friction_set, ...
-    options.ground = false;                        // the world has its ground already
-    UrdfScene urdf = SceneFromUrdf(req.model_xml, options);  // one-line reasons, as at start-up
-    Check(!urdf.scene.bodies.empty() || !urdf.scene.colliders.empty(),
-          "model_xml has neither a free body nor a collision: nothing to spawn");
     Check(sim_->scene().bodies.size() + urdf.scene.bodies.size() <= kMaxWorldBodies,
           "the world would have " +
               std::to_string(sim_->scene().bodies.size() + urdf.scene.bodies.size()) +
               " bodies, more than " + std::to_string(kMaxWorldBodies) + " (the most it holds)");
+    Check(sim_->scene().colliders.size() + urdf.scene.colliders.size() <= kMaxWorldCollisions,
+          "the world would have " +
+              std::to_string(sim_->scene().colliders.size() + urdf.scene.colliders.size()) +
+              " collisions, more than " + std::to_string(kMaxWorldCollisions) +
+              " (the bound on collisions per world)");
     const Scene model = PlacedModel(urdf.scene, req.model_name + "/", placement);
+    {
+      // frames and topics one-to-one over the whole world (two transforms per frame otherwise)
+      Scene world = sim_->scene();
+      AppendScene(model, &world);
+      const std::string clash = FrameNameClash(world, parameters_.world_frame);
+      Check(clash.empty(), "model " + req.model_name + ": " + clash);
+    }
 
     const int first_collider = static_cast<int>(sim_->scene().colliders.size());
     const int first = sim_->AddBodies(model, model.initial_state);  // validates; or no change
@@ -96,7 +158,7 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
     for (int c = first_collider; c < static_cast<int>(sim_->scene().colliders.size()); ++c) {
       added.colliders.push_back(c);
     }
-    added.description = ros::names::append(nh_.resolveName(ns), "robot_description");
+    added.description = description;
     models_.push_back(added);
     warnings = urdf.warnings;
   } catch (const std::exception& e) {

@@ -73,6 +73,11 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       nh_(nh),
       private_nh_(private_nh),
       updater_(nh, private_nh) {
+  // names map one-to-one to frames and topics (two transforms per frame otherwise)
+  if (const std::string clash = FrameNameClash(urdf_.scene, parameters_.world_frame);
+      !clash.empty()) {
+    throw std::invalid_argument("urdf: " + clash);
+  }
   sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
   BuildModels();
   paused_ = parameters_.paused;

@@ -77,6 +77,9 @@ class SimulationNode {
   /// ~spawn_urdf_model refuses a model that would make the world larger than this many bodies
   /// (a bound on the work per step).
   static constexpr std::size_t kMaxWorldBodies = 4096;
+  /// ~spawn_urdf_model refuses a model that would make the world hold more collisions than this
+  /// (a bound on the work per step and on the ~wrench/ topics).
+  static constexpr std::size_t kMaxWorldCollisions = 16384;
   /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
   struct ExternalWrench {
     int body = 0;
@@ -158,6 +161,11 @@ class SimulationNode {
   // --- spawn and delete (model_services.cpp)
   bool OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Response& res);
   bool OnDeleteModel(DeleteModel::Request& req, DeleteModel::Response& res);
+  /// The parameter for a spawned model's URDF: <robot_namespace>/robot_description, confined to
+  /// the model's own namespace and checked against the master (model_services.cpp). Throws
+  /// std::invalid_argument with the reason. Talks to the master: call without the mutex.
+  std::string ModelNamespace(const std::string& model_name,
+                             const std::string& robot_namespace) const;
   /// After bodies or colliders were added or removed: the contact frames and wrench topics of the
   /// world, the markers cleared (mutex held).
   void WorldChanged();

@@ -79,6 +79,7 @@
 
 #include "nonsmooth_sim/core/scene.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/one_line.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -100,6 +101,9 @@ inline constexpr double kMaxGyrationRadius = 1e3;   ///< √(Iᵢ/m) [m]
 /// √(I_max/m) ≤ this × the body's extent (a thin ring of the body's size has √(I/m) = extent).
 inline constexpr double kGyrationSizeFactor = 100.0;
 
+/// The largest UrdfSceneOptions::max_bytes a user may configure [bytes]: 256 MiB.
+inline constexpr std::size_t kMaxInputBytesOption = std::size_t{256} << 20;
+
 /// A malformed or inconsistent URDF. what(): one line, "urdf: <element>: <reason>" (control
 /// characters of the quoted input escaped, one_line.h).
 class UrdfError : public std::invalid_argument {
@@ -117,6 +121,9 @@ struct UrdfSceneOptions {
   /// every collision shape of a free body (checked by the loader against the scene)
   std::optional<double> contact_radius;
   bool ground = true;  ///< append the core's GroundPlane() (z = 0, "ground") as the last collider
+  /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
+  /// in [1, kMaxInputBytesOption]
+  std::size_t max_bytes = kMaxInputBytes;
 };
 
 struct UrdfScene {
@@ -141,7 +148,8 @@ struct UrdfScene {
 UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& options = {});
 
 /// The scene of the URDF file `path`. Throws UrdfError ("urdf: <path>: ...") also when the file
-/// does not exist or cannot be read.
+/// does not exist, cannot be read, is not a regular file (a device, a FIFO: never opened for a
+/// wait) or has more than options.max_bytes bytes (bounded_input.h).
 UrdfScene LoadUrdfFile(const std::string& path, const UrdfSceneOptions& options = {});
 
 /// Throws std::invalid_argument naming the option and its range.
