@@ -8,6 +8,11 @@
 // in the core scene, so its TF frames are "<model>/<link>" (rviz's RobotModel with TF prefix
 // <model> on the robot_description set under its namespace); services address its bodies as
 // "<model>::<link>" (as Gazebo) or by that full name.
+//
+// Locks: the world changes under the simulator mutex; the master calls (the namespace checks,
+// setting or deleting the robot_description, advertising and unadvertising ~wrench/ topics) are
+// made without it, under world_mutex_, which serialises spawns and deletes. A slot of a spawned
+// collision publishes from when its topic is advertised.
 #include <ros/names.h>
 
 #include <map>
@@ -93,6 +98,9 @@ std::string SimulationNode::ModelNamespace(const std::string& model_name,
 }
 
 bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Response& res) {
+  // one spawn or delete at a time, held across its master calls; the simulator mutex only while
+  // the world changes, so that the simulation steps and the other services answer meanwhile
+  const std::lock_guard<std::mutex> world_lock(world_mutex_);
   std::vector<std::string> warnings;
   std::string description;
   UrdfScene urdf;
@@ -120,7 +128,9 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
     res.status_message = std::string(e.what()) + "; nothing changed";
     return true;
   }
-  const auto lock = LockForService();
+  WrenchTopics topics;
+  std::string name;
+  auto lock = LockForService();
   try {
     Check(ModelIndex(req.model_name) < 0,
           "model_name \"" + req.model_name + "\" exists already (~delete_model it first)");
@@ -167,21 +177,29 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
     return true;
   }
   const Model& added = models_.back();
-  nh_.setParam(added.description, req.model_xml);
-  for (const std::string& warning : warnings) {
-    ROS_WARN_STREAM("nonsmooth_sim: spawn " << added.name << ": " << warning);
-  }
-  WorldChanged();
+  name = added.name;
+  topics = WorldChanged();
   res.success = true;
   res.status_message = "spawned " + added.name + " (" + std::to_string(added.bodies.size()) +
                        " bodies, " + std::to_string(added.colliders.size()) +
                        " collisions) at t = " + std::to_string(sim_->time()) +
                        " s; its URDF is " + added.description;
+  lock.unlock();
+  // the master, without the simulator mutex: the simulation steps on and the other services
+  // answer while it is slow or stopped
+  nh_.setParam(description, req.model_xml);
+  AdvertiseWrenches(&topics);
+  for (const std::string& warning : warnings) {
+    ROS_WARN_STREAM("nonsmooth_sim: spawn " << name << ": " << warning);
+  }
   return true;
 }
 
 bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Response& res) {
-  const auto lock = LockForService();
+  const std::lock_guard<std::mutex> world_lock(world_mutex_);  // as in OnSpawnUrdfModel
+  WrenchTopics topics;
+  std::string description;
+  auto lock = LockForService();
   const int m = ModelIndex(req.model_name);
   if (m < 0) {
     res.success = false;
@@ -220,43 +238,49 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
     if (w.body >= 0) kept.push_back(w);
   }
   wrenches_.swap(kept);
-  if (!removed.description.empty()) nh_.deleteParam(removed.description);
-  WorldChanged();
+  description = removed.description;
+  topics = WorldChanged();
   res.success = true;
   res.status_message = "deleted " + removed.name + " (" + std::to_string(removed.bodies.size()) +
                        " bodies, " + std::to_string(removed.colliders.size()) +
                        " collisions) at t = " + std::to_string(sim_->time()) + " s";
+  lock.unlock();
+  // the master, without the simulator mutex (as in OnSpawnUrdfModel)
+  if (!description.empty()) nh_.deleteParam(description);
+  AdvertiseWrenches(&topics);  // the removed topics unadvertised
   return true;
 }
 
-void SimulationNode::WorldChanged() {
-  // wrench topics: kept for the collisions that stay, advertised for new ones; a removed one gets
-  // a zero wrench (rviz clears its arrow) and is unadvertised
+SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
+  // wrench topics: kept for the collisions that stay; a new one gets no publisher until
+  // AdvertiseWrenches (outside the mutex) installs it; a removed one gets a zero wrench (rviz
+  // clears its arrow) and is unadvertised when AdvertiseWrenches drops the last copy
   std::map<std::string, ros::Publisher> previous;
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    previous[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
+    if (wrench_pubs_[i]) previous[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
   }
   const FrameNames old_frames = frames_;
   frames_ = MakeFrameNames(sim_->scene(), parameters_.world_frame);
+  WrenchTopics topics;
   std::vector<ros::Publisher> publishers;
-  for (int collider : frames_.slots) {
-    const std::string topic =
-        "wrench/" + GraphName(sim_->scene().colliders[static_cast<std::size_t>(collider)].name);
+  for (std::size_t slot = 0; slot < frames_.slots.size(); ++slot) {
+    const std::string topic = WrenchTopic(slot);
     const auto found = previous.find(private_nh_.resolveName(topic));
     if (found != previous.end()) {
       publishers.push_back(found->second);
       previous.erase(found);
     } else {
-      publishers.push_back(
-          private_nh_.advertise<geometry_msgs::WrenchStamped>(topic, parameters_.queue_size));
+      publishers.emplace_back();
+      topics.to_advertise.push_back(topic);
     }
   }
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    if (previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // kept
+    if (!wrench_pubs_[i] || previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // kept
     geometry_msgs::WrenchStamped zero;
     zero.header.stamp = StampOf(sim_->time());
     zero.header.frame_id = old_frames.contacts[i];
     wrench_pubs_[i].publish(zero);
+    topics.retired.push_back(wrench_pubs_[i]);
   }
   wrench_pubs_.swap(publishers);
   wrench_closed_.assign(frames_.slots.size(), false);
@@ -264,6 +288,29 @@ void SimulationNode::WorldChanged() {
   // the contact arrows are numbered by contact: redrawn from the next message on
   markers_pub_.publish(DeleteAllMarkers(frames_.world));
   markers_count_ = 0;
+  return topics;
+}
+
+std::string SimulationNode::WrenchTopic(std::size_t slot) const {
+  return "wrench/" +
+         GraphName(sim_->scene().colliders[static_cast<std::size_t>(frames_.slots[slot])].name);
+}
+
+void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {
+  std::map<std::string, ros::Publisher> advertised;  // resolved topic → publisher
+  for (const std::string& topic : topics->to_advertise) {
+    advertised[private_nh_.resolveName(topic)] =
+        private_nh_.advertise<geometry_msgs::WrenchStamped>(topic, parameters_.queue_size);
+  }
+  if (!advertised.empty()) {
+    const auto lock = LockForService();
+    for (std::size_t slot = 0; slot < wrench_pubs_.size(); ++slot) {
+      if (wrench_pubs_[slot]) continue;
+      const auto found = advertised.find(private_nh_.resolveName(WrenchTopic(slot)));
+      if (found != advertised.end()) wrench_pubs_[slot] = found->second;
+    }
+  }
+  topics->retired.clear();  // the last copies of the removed topics: unadvertised here
 }
 
 }  // namespace nonsmooth_sim::node
