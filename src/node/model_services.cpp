@@ -79,7 +79,7 @@ std::string SimulationNode::ModelNamespace(const std::string& model_name,
     ns = nh_.resolveName(robot_namespace);
   }
   Check(ns == own || ns.rfind(own + "/", 0) == 0,
-        "robot_namespace \"" + robot_namespace + "\" resolves to " + ns +
+        "robot_namespace \"" + robot_namespace + "\" resolves to " + (ns.empty() ? "/" : ns) +
             ": must be the model's own namespace " + own + " or one under it (never /, a global "
             "parameter or another model's namespace)");
   const std::string description = ros::names::append(ns, "robot_description");

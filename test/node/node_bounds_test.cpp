@@ -166,6 +166,7 @@ TEST_F(Bounds, RobotNamespaceStaysInTheModelsOwnNamespace) {
                                 "/top1", "other"}) {
     ExpectRefused(Spawn("n1", xml, 1.0, ns), {"must be the model's own namespace /n1"});
   }
+  ExpectRefused(Spawn("n1", xml, 1.0, "/"), {"robot_namespace \"/\" resolves to /: "});
   ExpectRefused(Spawn("n1", xml, 1.0, "~private"), {"a private name is not allowed"});
   // a model named like a global parameter: its own namespace holds a value
   ExpectRefused(Spawn("rosdistro", xml, 1.0), {"the parameter /rosdistro holds a value"});

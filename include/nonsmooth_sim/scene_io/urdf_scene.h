@@ -68,7 +68,9 @@
 //    length in [0, kMaxLength]);
 //  - μ, μ₂ and μ_τ in [0, kMaxFriction]; the patch radius R (or the option) in [0, kMaxLength] and
 //    at most the bounding radius of each shape of a free body it applies to (the contact patch lies
-//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity].
+//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity];
+//  - sizes (bounded_input.h): the text at most options.max_bytes, names at most kMaxNameLength
+//    bytes, at most kMaxCollisionsPerModel <collision> elements; a file must be a regular file.
 #ifndef NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 #define NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 
