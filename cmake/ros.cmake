@@ -80,6 +80,11 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_world_test)
   nonsmooth_sim_rostest(node_spawn_test)
   nonsmooth_sim_rostest(node_fuzz_test)
+  nonsmooth_sim_rostest(node_bounds_test)
+  nonsmooth_sim_rostest(node_master_test)
+  # two 100 000-step calls one after the other: minutes under the sanitizers
+  set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_master_test.test PROPERTIES
+    TIMEOUT 240)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

@@ -22,6 +22,12 @@ nonsmooth_sim_add_gtests(DIR test/reference PREFIX reference LIBRARIES nonsmooth
 # core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
 nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes LIBRARIES nonsmooth_sim_scene_io
                          nonsmooth_sim_core nonsmooth_sim_rolling_reference)
+# `simulate` with devices, FIFOs, oversize files and out of memory: one line and a documented
+# exit code (docs/simulate.md, "Exit codes")
+add_test(NAME simulate_files_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_files_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:

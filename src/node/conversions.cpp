@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "nonsmooth_sim/core/tippe_top.h"
 
@@ -110,6 +111,35 @@ FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame) {
     names.slot_of_collider[static_cast<std::size_t>(names.slots[k])] = static_cast<int>(k);
   }
   return names;
+}
+
+std::string FrameNameClash(const Scene& scene, const std::string& world_frame) {
+  // every TF frame the node broadcasts → who owns it; a contact frame's topic ~wrench/<x> is
+  // unique exactly when its frame <x>_contact is
+  std::map<std::string, std::string> owners;
+  owners.emplace(world_frame, "the fixed frame ~world_frame");
+  const auto claim = [&owners](const std::string& frame, const std::string& owner,
+                               const std::string& what) -> std::string {
+    const auto [it, inserted] = owners.emplace(frame, owner);
+    if (inserted) return "";
+    return owner + " would have the " + what + " of " + it->second +
+           " (frames and ~wrench/ topics replace every character other than A-Z a-z 0-9 _ by _; "
+           "rename one)";
+  };
+  for (const RigidBody& body : scene.bodies) {
+    const std::string clash = claim(body.name, "body \"" + body.name + "\"",
+                                    "TF frame \"" + body.name + "\"");
+    if (!clash.empty()) return clash;
+  }
+  for (const Collider& collider : scene.colliders) {
+    if (collider.body == kWorld) continue;
+    const std::string base = GraphName(collider.name);
+    const std::string clash =
+        claim(base + "_contact", "collision \"" + collider.name + "\"",
+              "contact frame \"" + base + "_contact\" and topic ~wrench/" + base);
+    if (!clash.empty()) return clash;
+  }
+  return "";
 }
 
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot) {

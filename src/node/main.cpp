@@ -1,12 +1,14 @@
 // nonsmooth_sim_node: the simulator served to ROS. A bad parameter or URDF stops it at start-up
-// with one error line and exit code 1.
+// with one error line and exit code 1 (also out of memory and any other exception).
 #include <ros/ros.h>
 
 #include <exception>
+#include <new>
 
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/node/node_parameters.h"
 #include "nonsmooth_sim/node/simulation_node.h"
+#include "nonsmooth_sim/scene_io/one_line.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "nonsmooth_sim");
@@ -23,8 +25,15 @@ int main(int argc, char** argv) {
     ros::AsyncSpinner spinner(2);
     spinner.start();
     ros::waitForShutdown();
+  } catch (const std::bad_alloc&) {
+    ROS_FATAL_STREAM("out of memory at start-up (the scene needs more memory than the system "
+                     "gives)");
+    return 1;
   } catch (const std::exception& e) {
-    ROS_FATAL_STREAM(e.what());
+    ROS_FATAL_STREAM(nonsmooth_sim::scene_io::OneLine(e.what()));
+    return 1;
+  } catch (...) {
+    ROS_FATAL_STREAM("internal error at start-up (an exception of unknown type)");
     return 1;
   }
   return 0;

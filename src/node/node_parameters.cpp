@@ -1,9 +1,9 @@
 // Private parameters of the node: read once, validated. See node_parameters.h.
 #include "nonsmooth_sim/node/node_parameters.h"
 
+#include "nonsmooth_sim/scene_io/bounded_input.h"
+
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace nonsmooth_sim::node {
@@ -130,12 +130,12 @@ void RequireRate(const char* name, double rate, bool zero_allowed) {
   }
 }
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("parameter ~urdf_file: cannot read \"" + path + "\"");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+std::string ReadFile(const std::string& path, std::size_t max_bytes) {
+  try {
+    return scene_io::ReadBoundedFile(path, max_bytes, "a URDF file");
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("parameter ~urdf_file: \"" + path + "\": " + e.what());
+  }
 }
 
 }  // namespace
@@ -190,12 +190,27 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   // the second-order scheme (as simulate)
   p.simulator.integrator = Integrator::kMoreau2;
 
+  // the bound first: ~urdf_file is read with it
+  int max_urdf_bytes = static_cast<int>(p.scene.max_bytes);
+  r.Integer("max_urdf_bytes", &max_urdf_bytes);
+  if (max_urdf_bytes < 1 ||
+      static_cast<std::size_t>(max_urdf_bytes) > scene_io::kMaxInputBytesOption) {
+    r.Fail("max_urdf_bytes", "must be in [1, " +
+                                 std::to_string(scene_io::kMaxInputBytesOption) +
+                                 "] [bytes], got " + std::to_string(max_urdf_bytes));
+  }
+  p.scene.max_bytes = static_cast<std::size_t>(max_urdf_bytes);
   r.String("urdf_file", &p.urdf_file);
   if (!p.urdf_file.empty()) {
-    p.urdf_xml = ReadFile(p.urdf_file);
+    p.urdf_xml = ReadFile(p.urdf_file, p.scene.max_bytes);
   } else if (!nh.getParam("robot_description", p.urdf_xml)) {
     throw std::invalid_argument(
         "no URDF: set the robot_description parameter (a string) or ~urdf_file");
+  } else if (p.urdf_xml.size() > p.scene.max_bytes) {
+    throw std::invalid_argument(
+        "parameter robot_description: " + std::to_string(p.urdf_xml.size()) +
+        " bytes, more than the bound ~max_urdf_bytes = " +
+        scene_io::DescribeBytes(p.scene.max_bytes));
   }
   r.String("world_frame", &p.world_frame);
   r.String("model_name", &p.model_name);

@@ -74,6 +74,11 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       nh_(nh),
       private_nh_(private_nh),
       updater_(nh, private_nh) {
+  // names map one-to-one to frames and topics (two transforms per frame otherwise)
+  if (const std::string clash = FrameNameClash(urdf_.scene, parameters_.world_frame);
+      !clash.empty()) {
+    throw std::invalid_argument("urdf: " + clash);
+  }
   sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
   tick_ = parameters_.simulator.time_step;
   solver_tolerance_ = parameters_.simulator.solver.tolerance_rel;
@@ -116,7 +121,6 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   services_ = {
       p.advertiseService("pause_physics", &SimulationNode::OnPause, this),
       p.advertiseService("unpause_physics", &SimulationNode::OnUnpause, this),
-      p.advertiseService("step", &SimulationNode::OnStep, this),
       p.advertiseService("reset", &SimulationNode::OnResetState, this),
       p.advertiseService("reset_world", &SimulationNode::OnResetWorld, this),
       p.advertiseService("reset_simulation", &SimulationNode::OnResetSimulation, this),
@@ -134,6 +138,18 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       p.advertiseService("spawn_urdf_model", &SimulationNode::OnSpawnUrdfModel, this),
       p.advertiseService("delete_model", &SimulationNode::OnDeleteModel, this),
   };
+
+  {
+    ros::AdvertiseServiceOptions step;
+    step.init<StepSimulation::Request, StepSimulation::Response>(
+        "step", [this](StepSimulation::Request& req, StepSimulation::Response& res) {
+          return OnStep(req, res);
+        });
+    step.callback_queue = &step_queue_;
+    services_.push_back(p.advertiseService(step));
+    step_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &step_queue_);
+    step_spinner_->start();
+  }
 
   updater_.setHardwareID("nonsmooth_sim");
   updater_.add("simulation", this, &SimulationNode::Diagnose);
@@ -168,6 +184,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
 }
 
 SimulationNode::~SimulationNode() {
+  if (step_spinner_) step_spinner_->stop();  // a running ~step ends at its next chunk (ros::ok)
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
@@ -458,7 +475,9 @@ void SimulationNode::PublishContacts() {
   FirstContacts(*sim_, &first_contact_);
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
     const bool closed = first_contact_[static_cast<std::size_t>(frames_.slots[i])] >= 0;
-    if ((closed || wrench_closed_[i]) && wrench_pubs_[i].getNumSubscribers() > 0) {
+    // (a slot of a spawned collision has no publisher until AdvertiseWrenches)
+    if ((closed || wrench_closed_[i]) && wrench_pubs_[i] &&
+        wrench_pubs_[i].getNumSubscribers() > 0) {
       FillWrench(*sim_, i, frames_, stamp, &wrench_msg_);
       wrench_pubs_[i].publish(wrench_msg_);
     }
@@ -515,6 +534,7 @@ void SimulationNode::AfterReset() {
   std::fill(wrench_closed_.begin(), wrench_closed_.end(), false);
   geometry_msgs::WrenchStamped zero;
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
+    if (!wrench_pubs_[i]) continue;  // advertised after a spawn (AdvertiseWrenches)
     zero.header.stamp = StampOf(sim_->time());
     zero.header.frame_id = frames_.contacts[i];
     wrench_pubs_[i].publish(zero);

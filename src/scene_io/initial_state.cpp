@@ -5,12 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <utility>
 
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -141,21 +140,11 @@ BodyInitialState ParseBody(const YAML::Node& node, const std::string& path, int 
 }
 
 std::string ReadFile(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) {
-    throw InitialStateError("initial state: " + path + ": no such file");
+  try {
+    return ReadBoundedFile(path, kMaxInputBytes, "a YAML file");
+  } catch (const std::invalid_argument& e) {
+    throw InitialStateError("initial state: " + path + ": " + e.what());
   }
-  if (std::filesystem::is_directory(path, error)) {
-    throw InitialStateError("initial state: " + path + ": is a directory, expected a YAML file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in.is_open()) {
-    throw InitialStateError("initial state: " + path + ": cannot be opened (permissions?)");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InitialStateError("initial state: " + path + ": cannot be read");
-  return text.str();
 }
 
 }  // namespace
@@ -187,15 +176,28 @@ void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d&
 }
 
 InitialStateSpec ParseInitialStateYaml(const std::string& yaml_text) {
-  YAML::Node root;
+  // the bounds before yaml-cpp allocates anything (bounded_input.h)
   try {
-    root = YAML::Load(yaml_text);
+    CheckYamlText(yaml_text);
+  } catch (const std::invalid_argument& e) {
+    throw InitialStateError(std::string("initial state: ") + e.what());
+  }
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
   } catch (const YAML::ParserException& e) {
     throw InitialStateError("initial state (line " + std::to_string(e.mark.line + 1) +
                             ", column " + std::to_string(e.mark.column + 1) +
                             "): not valid YAML: " + e.msg);
   }
+  if (documents.size() > 1) {
+    Fail("the text", Line(documents[1]),
+         "holds " + std::to_string(documents.size()) +
+             " YAML documents (a second one after --- or text after ...); allowed: one");
+  }
   InitialStateSpec spec;
+  if (documents.empty()) return spec;  // no document
+  const YAML::Node root = documents.front();
   if (root.IsNull()) return spec;  // an empty document
   if (!root.IsMap()) {
     Fail("the document", Line(root), "not a map; expected the key bodies: {<link>: {...}}");

@@ -10,12 +10,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -636,6 +635,11 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
                                 ": must be in [0, " + Format(kMaxLength) +
                                 "] [m] (and at most the size of every shape of a free body)");
   }
+  if (options.max_bytes < 1 || options.max_bytes > kMaxInputBytesOption) {
+    throw std::invalid_argument("max_bytes = " + std::to_string(options.max_bytes) +
+                                ": must be in [1, " + std::to_string(kMaxInputBytesOption) +
+                                "] [bytes]");
+  }
   if (!IsFrictionSet(options.friction_set)) {
     throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());
   }
@@ -643,6 +647,11 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
 
 UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& options) {
   ValidateUrdfSceneOptions(options);
+  if (urdf_xml.size() > options.max_bytes) {
+    throw UrdfError("urdf: the text has " + std::to_string(urdf_xml.size()) +
+                    " bytes, more than the bound of " + DescribeBytes(options.max_bytes) +
+                    " (refused before parsing)");
+  }
   const UrdfXml xml = ParseUrdfXml(urdf_xml);
 
   urdf::ModelInterfaceSharedPtr model;
@@ -665,20 +674,14 @@ UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& opt
 }
 
 UrdfScene LoadUrdfFile(const std::string& path, const UrdfSceneOptions& options) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) {
-    throw UrdfError("urdf: " + path + ": no such file");
-  }
-  if (std::filesystem::is_directory(path, error)) {
-    throw UrdfError("urdf: " + path + ": is a directory, expected a URDF file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in.is_open()) throw UrdfError("urdf: " + path + ": cannot be opened (permissions?)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw UrdfError("urdf: " + path + ": cannot be read");
+  std::string text;
   try {
-    return SceneFromUrdf(text.str(), options);
+    text = ReadBoundedFile(path, options.max_bytes, "a URDF file");
+  } catch (const std::invalid_argument& e) {
+    throw UrdfError("urdf: " + path + ": " + e.what());
+  }
+  try {
+    return SceneFromUrdf(text, options);
   } catch (const UrdfError& e) {
     // "urdf: <reason>" → "urdf: <path>: <reason>"
     const std::string what = e.what();

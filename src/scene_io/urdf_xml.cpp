@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -391,6 +392,38 @@ void CheckXmlCharacters(const std::string& xml) {
   }
 }
 
+// The bounds of bounded_input.h on names (robot, links, joints, collisions) and on the number of
+// collisions, before urdfdom builds the model.
+void CheckSizes(const XMLElement* robot) {
+  const auto name_of = [](const XMLElement* e, const std::string& what) {
+    if (const char* name = e->Attribute("name")) {
+      try {
+        CheckNameLength(what, name);
+      } catch (const std::invalid_argument& error) {
+        throw UrdfError("urdf: line " + std::to_string(e->GetLineNum()) + ": " + error.what());
+      }
+    }
+  };
+  name_of(robot, "robot");
+  std::size_t collisions = 0;
+  for (const XMLElement* e = robot->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag != "link" && tag != "joint") continue;
+    name_of(e, tag);
+    if (tag != "link") continue;
+    for (const XMLElement* c = e->FirstChildElement("collision"); c != nullptr;
+         c = c->NextSiblingElement("collision")) {
+      name_of(c, "collision");
+      if (++collisions > kMaxCollisionsPerModel) {
+        throw UrdfError("urdf: " + DescribeWithLine(c) + ": more than " +
+                        std::to_string(kMaxCollisionsPerModel) +
+                        " collisions in one URDF (the bound on collisions per model)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool ParseFiniteNumber(std::string_view text, double* value) {
@@ -412,6 +445,7 @@ UrdfXml ParseUrdfXml(const std::string& xml) {
     throw UrdfError("urdf: the root element is <" + std::string(robot->Name()) +
                     ">, expected <robot> (line " + std::to_string(robot->GetLineNum()) + ")");
   }
+  CheckSizes(robot);
   UrdfXml result;
   for (const XMLElement* e = robot->FirstChildElement(); e != nullptr;
        e = e->NextSiblingElement()) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,7 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
+#include "nonsmooth_sim/scene_io/one_line.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 #include "progress.h"
 
@@ -29,6 +31,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitOutputError = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitNonFinite = 3;  // the run diverged; outputs end at the last finite state
+constexpr int kExitInternal = 4;   // out of memory, or an unexpected error (one line)
 
 // CPU time of this thread [s]: unlike wall time, not inflated when other processes share the core.
 double ThreadCpuSeconds() {
@@ -318,8 +321,20 @@ int main(int argc, char** argv) {
   try {
     return Run(std::get<RunConfig>(parsed));
   } catch (const std::invalid_argument& e) {
-    // a combination the core rejects (all single values are range-checked by the parser)
+    // a bad file, or a combination the core rejects (all single values are range-checked by the
+    // parser)
     std::fprintf(stderr, "simulate: %s\n", e.what());
     return kExitUsage;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "simulate: out of memory (the scene or the run needs more memory than "
+                         "the system gives)\n");
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "simulate: internal error: %s\n",
+                 nonsmooth_sim::scene_io::OneLine(e.what()).c_str());
+    return kExitInternal;
+  } catch (...) {
+    std::fprintf(stderr, "simulate: internal error (an exception of unknown type)\n");
+    return kExitInternal;
   }
 }

@@ -77,6 +77,33 @@ TEST(Conversions, GraphNamesAreSanitised) {
   EXPECT_EQ(GraphName("2nd"), "_2nd");
 }
 
+// Every frame and ~wrench/ topic belongs to one name: names that sanitise to the same frame are
+// found, with both owners named; distinct names pass.
+TEST(Conversions, NamesThatShareAFrameAfterSanitisingAreFound) {
+  Scene scene = MakeTippeTopScene({}, {0.0, 0.0});  // "big_sphere", "peg_sphere", "ground"
+  EXPECT_EQ(FrameNameClash(scene, "world"), "");
+  Scene clash = scene;
+  clash.colliders[1].name = "big/sphere";  // → big_sphere_contact, as the big sphere's
+  EXPECT_EQ(FrameNameClash(clash, "world").rfind(
+                "collision \"big/sphere\" would have the contact frame \"big_sphere_contact\" "
+                "and topic ~wrench/big_sphere of collision \"big_sphere\"",
+                0),
+            0u)
+      << FrameNameClash(clash, "world");
+  Scene body_frame = scene;
+  body_frame.bodies[0].name = "big_sphere_contact";  // a body frame equal to a contact frame
+  EXPECT_NE(FrameNameClash(body_frame, "world").find("of body \"big_sphere_contact\""),
+            std::string::npos);
+  Scene world = scene;
+  world.bodies[0].name = "world";  // the fixed frame
+  EXPECT_NE(FrameNameClash(world, "world").find("of the fixed frame ~world_frame"),
+            std::string::npos);
+  // the static ground has no contact frame: a body collision may sanitise like it
+  Scene ground = scene;
+  ground.colliders[1].name = "ground";
+  EXPECT_EQ(FrameNameClash(ground, "world"), "");
+}
+
 TEST(Conversions, LinkPoseShiftsTheCentreOfMassBack) {
   RigidBody body;
   body.com_in_link = Eigen::Vector3d(0.1, 0.0, 0.2);

@@ -1,14 +1,18 @@
 // Each malformed URDF fixture and each bad parameter stops the node at start-up with exit code 1
 // and exactly one error line on stderr naming the element (or parameter) and the reason. The
 // good URDF with the same command line starts (the cases fail for their defect, not the setup).
+// Files that are devices, FIFOs or beyond ~max_urdf_bytes, and names that share a frame after
+// sanitising, are such defects too.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -132,7 +136,7 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_4", urdf, "_tf_rate:=abc"}),
                      {"~tf_rate", "expected a number"}, "tf_rate");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_5", "_urdf_file:=" + Fixture("absent.urdf")}),
-                     {"~urdf_file", "cannot read"}, "urdf_file");
+                     {"~urdf_file", "absent.urdf", "no such file"}, "urdf_file");
   // finite but beyond the bounds of the core's validation (issue 11): the node ran 2^31
   // iterations per step, or started with an infinite kinetic energy
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_7", urdf, "_max_iterations:=2147483647"}),
@@ -148,6 +152,47 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");
+}
+
+// Files that are not regular files or exceed ~max_urdf_bytes are refused by type and size before
+// they are read: /dev/zero was read for about 1 GB, a FIFO without a writer hung the start-up.
+TEST(NodeBadUrdf, DevicesFifosAndOversizeFilesAreRefusedBeforeReading) {
+  ExpectOneErrorLine(RunNode({"__name:=bad_file_0", "_urdf_file:=/dev/zero"}),
+                     {"~urdf_file", "/dev/zero", "is a character device, not a regular file",
+                      "a regular file of at most 16777216 bytes (16 MiB)"},
+                     "/dev/zero");
+  const std::string fifo = ::testing::TempDir() + "/node_bad_urdf_test.fifo";
+  unlink(fifo.c_str());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0) << fifo;
+  ExpectOneErrorLine(RunNode({"__name:=bad_file_1", "_urdf_file:=" + fifo}),
+                     {"~urdf_file", fifo, "is a FIFO, not a regular file"}, "FIFO");
+  unlink(fifo.c_str());
+  const std::string urdf = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf";
+  ExpectOneErrorLine(RunNode({"__name:=bad_file_2", "_urdf_file:=" + urdf,
+                              "_max_urdf_bytes:=1000"}),
+                     {"~urdf_file", "more than the bound of 1000 bytes"}, "max_urdf_bytes");
+  ExpectOneErrorLine(RunNode({"__name:=bad_file_3", "_urdf_file:=" + urdf,
+                              "_max_urdf_bytes:=0"}),
+                     {"~max_urdf_bytes", "must be in [1, 268435456]"}, "max_urdf_bytes 0");
+}
+
+// Names that would share a TF frame or a ~wrench/ topic after sanitising stop the start-up, naming
+// both (collisions "x/y" and "x_y" published one frame with two transforms per stamp).
+TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
+  const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_clash.urdf";
+  const std::string inertial =
+      "<inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" "
+      "iyz=\"0\" izz=\"0.01\"/></inertial>";
+  const auto ball = [](const char* name, double z) {
+    return "<collision name=\"" + std::string(name) + "\"><origin xyz=\"0 0 " +
+           std::to_string(z) + "\"/><geometry><sphere radius=\"0.05\"/></geometry></collision>";
+  };
+  std::ofstream(path) << "<robot name=\"r\"><link name=\"b\">" << inertial << ball("x_y", 0.0)
+                      << ball("x/y", 0.01) << "</link></robot>";
+  ExpectOneErrorLine(RunNode({"__name:=name_clash", "_urdf_file:=" + path}),
+                     {"collision \"x/y\" would have the contact frame \"x_y_contact\" and "
+                      "topic ~wrench/x_y of collision \"x_y\""},
+                     "x/y and x_y");
 }
 
 TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {

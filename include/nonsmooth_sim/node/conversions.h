@@ -33,6 +33,12 @@ struct FrameNames {
 };
 FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
 
+/// "" when every TF frame of `scene` (the fixed frame, each body's frame = its name, each contact
+/// frame of MakeFrameNames) and every ~wrench/ topic belongs to one name only; else one line
+/// naming both owners and the frame, e.g. 'collision "x/y" would have the contact frame
+/// "x_y_contact" and topic ~wrench/x_y of collision "x_y" (...)'.
+std::string FrameNameClash(const Scene& scene, const std::string& world_frame);
+
 /// The first closed contact of slot `slot`, or nullptr (a scan of the contacts: O(contacts)).
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot);
 

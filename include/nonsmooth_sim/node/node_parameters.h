@@ -36,7 +36,9 @@ struct NodeParameters {
   std::string world_frame = "world";  ///< ~world_frame: fixed frame of TF, markers, contacts
   std::string model_name;         ///< ~model_name: the URDF's model in the world services
                                   ///< (default: its <robot name>)
-  UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius
+  UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius,
+                                  ///< ~max_urdf_bytes (max_bytes: of ~urdf_file,
+                                  ///< robot_description and ~spawn_urdf_model's model_xml)
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
                                   ///< ~max_iterations, ~relaxation, ~gyroscopic, ~integrator,
                                   ///< ~gap_correction (bool, default true)

@@ -5,11 +5,14 @@
 // ~real_time_factor, or as fast as possible for 0); services and the diagnostics wall timer run
 // in the ROS spinner. One mutex guards the Simulator: the integrator holds it for a bounded chunk
 // of steps, so every service applies its change between two steps. A service that waits for the
-// mutex is served before the next chunk (LockForService).
+// mutex is served before the next chunk (LockForService). ~step has a callback queue and thread
+// of its own, so that long step calls never take the spinner's threads from the other services;
+// spawn and delete call the master without the mutex (model_services.cpp).
 #ifndef NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
 #define NONSMOOTH_SIM_NODE_SIMULATION_NODE_H_
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
@@ -78,6 +81,9 @@ class SimulationNode {
   /// ~spawn_urdf_model refuses a model that would make the world larger than this many bodies
   /// (a bound on the work per step).
   static constexpr std::size_t kMaxWorldBodies = 4096;
+  /// ~spawn_urdf_model refuses a model that would make the world hold more collisions than this
+  /// (a bound on the work per step and on the ~wrench/ topics).
+  static constexpr std::size_t kMaxWorldCollisions = 16384;
   /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
   struct ExternalWrench {
     int body = 0;
@@ -166,9 +172,24 @@ class SimulationNode {
   // --- spawn and delete (model_services.cpp)
   bool OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Response& res);
   bool OnDeleteModel(DeleteModel::Request& req, DeleteModel::Response& res);
+  /// The parameter for a spawned model's URDF: <robot_namespace>/robot_description, confined to
+  /// the model's own namespace and checked against the master (model_services.cpp). Throws
+  /// std::invalid_argument with the reason. Talks to the master: call without the mutex.
+  std::string ModelNamespace(const std::string& model_name,
+                             const std::string& robot_namespace) const;
+  /// What a change of the world leaves for the master (AdvertiseWrenches, without the mutex).
+  struct WrenchTopics {
+    std::vector<std::string> to_advertise;  ///< ~wrench/ topics of new slots (relative names)
+    std::vector<ros::Publisher> retired;    ///< of removed slots: their last copies
+  };
   /// After bodies or colliders were added or removed: the contact frames and wrench topics of the
-  /// world, the markers cleared (mutex held).
-  void WorldChanged();
+  /// world, the markers cleared (mutex held). New slots have no publisher yet.
+  WrenchTopics WorldChanged();
+  /// Advertises the new topics and installs them in their slots (takes the mutex for that only),
+  /// then drops the retired publishers (unadvertised): the master calls of a spawn or delete,
+  /// made without the simulator mutex. Call with world_mutex_ held.
+  void AdvertiseWrenches(WrenchTopics* topics);
+  std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
   void BuildModels();
   int ModelIndex(const std::string& name) const;       ///< -1 if unknown
   /// 'no model "<name>"; the models are: a, b' (the reply to an unknown model name)
@@ -199,12 +220,15 @@ class SimulationNode {
 
   ros::NodeHandle nh_, private_nh_;
   ros::Publisher clock_pub_, tf_pub_, contacts_pub_, state_pub_, markers_pub_;
-  std::vector<ros::Publisher> wrench_pubs_;
+  std::vector<ros::Publisher> wrench_pubs_;  ///< per slot; empty until advertised
   std::vector<ros::ServiceServer> services_;
   ros::WallTimer diagnostics_timer_;
   diagnostic_updater::Updater updater_;
 
   std::mutex mutex_;
+  /// Serialises ~spawn_urdf_model and ~delete_model, held across their master calls (taken
+  /// before mutex_, never while holding it).
+  std::mutex world_mutex_;
   std::condition_variable wake_;
   std::atomic<int> waiting_services_{0};
   bool stop_ = false;
@@ -272,6 +296,11 @@ class SimulationNode {
   } snapshot_;
   double previous_running_wall_ = 0.0;
   double previous_running_sim_time_ = 0.0;
+
+  /// ~step's own callback queue and thread: a long step call (or several, served one after the
+  /// other) never holds a thread of the node's spinner, so the other services keep answering
+  ros::CallbackQueue step_queue_;
+  std::unique_ptr<ros::AsyncSpinner> step_spinner_;
 
   std::thread integrator_;  // last: started when everything above exists
 };

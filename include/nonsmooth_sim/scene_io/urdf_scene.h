@@ -68,7 +68,9 @@
 //    length in [0, kMaxLength]);
 //  - μ, μ₂ and μ_τ in [0, kMaxFriction]; the patch radius R (or the option) in [0, kMaxLength] and
 //    at most the bounding radius of each shape of a free body it applies to (the contact patch lies
-//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity].
+//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity];
+//  - sizes (bounded_input.h): the text at most options.max_bytes, names at most kMaxNameLength
+//    bytes, at most kMaxCollisionsPerModel <collision> elements; a file must be a regular file.
 #ifndef NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 #define NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
 
@@ -79,6 +81,7 @@
 
 #include "nonsmooth_sim/core/scene.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/one_line.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -100,6 +103,9 @@ inline constexpr double kMaxGyrationRadius = 1e3;   ///< √(Iᵢ/m) [m]
 /// √(I_max/m) ≤ this × the body's extent (a thin ring of the body's size has √(I/m) = extent).
 inline constexpr double kGyrationSizeFactor = 100.0;
 
+/// The largest UrdfSceneOptions::max_bytes a user may configure [bytes]: 256 MiB.
+inline constexpr std::size_t kMaxInputBytesOption = std::size_t{256} << 20;
+
 /// A malformed or inconsistent URDF. what(): one line, "urdf: <element>: <reason>" (control
 /// characters of the quoted input escaped, one_line.h).
 class UrdfError : public std::invalid_argument {
@@ -117,6 +123,9 @@ struct UrdfSceneOptions {
   /// every collision shape of a free body (checked by the loader against the scene)
   std::optional<double> contact_radius;
   bool ground = true;  ///< append the core's GroundPlane() (z = 0, "ground") as the last collider
+  /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
+  /// in [1, kMaxInputBytesOption]
+  std::size_t max_bytes = kMaxInputBytes;
 };
 
 struct UrdfScene {
@@ -141,7 +150,8 @@ struct UrdfScene {
 UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& options = {});
 
 /// The scene of the URDF file `path`. Throws UrdfError ("urdf: <path>: ...") also when the file
-/// does not exist or cannot be read.
+/// does not exist, cannot be read, is not a regular file (a device, a FIFO: never opened for a
+/// wait) or has more than options.max_bytes bytes (bounded_input.h).
 UrdfScene LoadUrdfFile(const std::string& path, const UrdfSceneOptions& options = {});
 
 /// Throws std::invalid_argument naming the option and its range.

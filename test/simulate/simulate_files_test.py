@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""simulate refuses files that are not regular files or exceed the size bound with one line and
+exit code 2, before reading them (a FIFO without a writer must not hang it, /dev/zero must not be
+read until memory runs out); an exception the loader does not expect (out of memory) is one line
+and exit code 4 (docs/simulate.md, "Exit codes").
+
+  simulate_files_test.py <simulate executable> <source dir>
+"""
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SIMULATE = sys.argv[1] if len(sys.argv) > 1 else "build-release/devel/lib/nonsmooth_sim/simulate"
+SOURCE = sys.argv[2] if len(sys.argv) > 2 else "."
+URDF = os.path.join(SOURCE, "urdf", "coin.urdf")
+INITIAL = os.path.join(SOURCE, "config", "coin.yaml")  # starts without an overlap warning
+BOUND = 16 << 20
+
+
+def run(args, limit_memory=None, timeout=60):
+    """(exit code, stderr lines) of simulate with `args`; fails on a hang (timeout)."""
+    def limit():
+        if limit_memory:
+            resource.setrlimit(resource.RLIMIT_AS, (limit_memory, limit_memory))
+    done = subprocess.run([SIMULATE, "--quiet"] + args, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, timeout=timeout, preexec_fn=limit)
+    return done.returncode, done.stderr.decode(errors="replace").splitlines()
+
+
+class SimulateFiles(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def expect_refusal(self, args, *parts, code=2):
+        returncode, lines = run(args)
+        self.assertEqual(returncode, code, lines)
+        self.assertEqual(len(lines), 1, lines)
+        for part in parts:
+            self.assertIn(part, lines[0])
+
+    def test_devices_are_refused(self):
+        for device in ("/dev/zero", "/dev/urandom"):
+            self.expect_refusal(["--urdf", device], "simulate: urdf: " + device +
+                                ": is a character device, not a regular file; allowed: a URDF "
+                                "file, a regular file of at most 16777216 bytes (16 MiB)")
+            self.expect_refusal(["--urdf", URDF, "--initial", device],
+                                "simulate: initial state: " + device + ": is a character device")
+
+    def test_fifo_does_not_hang(self):
+        fifo = os.path.join(self.tmp.name, "scene.fifo")
+        os.mkfifo(fifo)
+        self.expect_refusal(["--urdf", fifo], "urdf: " + fifo + ": is a FIFO")
+        self.expect_refusal(["--urdf", URDF, "--initial", fifo],
+                            "initial state: " + fifo + ": is a FIFO")
+
+    def test_oversize_files_are_refused(self):
+        big = os.path.join(self.tmp.name, "big.urdf")
+        with open(URDF) as f:
+            text = f.read()
+        with open(big, "w") as f:
+            f.write(text.replace("</robot>", "<!--" + " " * BOUND + "--></robot>"))
+        self.expect_refusal(["--urdf", big],
+                            "more than the bound of 16777216 bytes (16 MiB)")
+        yaml = os.path.join(self.tmp.name, "big.yaml")
+        with open(yaml, "w") as f:
+            f.write("#" * (BOUND + 1))
+        self.expect_refusal(["--urdf", URDF, "--initial", yaml],
+                            "initial state: " + yaml + ": has 16777217 bytes, more than the "
+                            "bound")
+
+    def test_second_yaml_document_is_refused(self):
+        yaml = os.path.join(self.tmp.name, "two.yaml")
+        with open(yaml, "w") as f:
+            f.write("bodies: {}\n---\nbodies: {}\n")
+        self.expect_refusal(["--urdf", URDF, "--initial", yaml],
+                            "holds 2 YAML documents")
+
+    def test_out_of_memory_is_one_line_and_exit_4(self):
+        # the CSV is reserved up front: 10^6 rows (decimate 10) of 20 columns, 160 MB, beyond
+        # 100 MB of address space (the run alone needs about 20 MB)
+        csv = os.path.join(self.tmp.name, "run.csv")
+        returncode, lines = run(["--urdf", URDF, "--initial", INITIAL, "--duration", "1000",
+                                 "--csv", csv], limit_memory=100 << 20)
+        if any("Sanitizer" in line for line in lines):
+            self.skipTest("a sanitizer's runtime needs more address space than the limit")
+        self.assertEqual(returncode, 4, lines)
+        self.assertEqual(lines, ["simulate: out of memory (the scene or the run needs more "
+                                 "memory than the system gives)"])
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0]])
