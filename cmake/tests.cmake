@@ -57,8 +57,8 @@ set_target_properties(one_body_bound PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSM
 add_test(NAME docs_paths_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/docs/paths_test.py)
 
-# Every listing of the friction sets outside the code (msg/srv/launch comments, docs) is the
-# program's list, `simulate --list-friction-sets` (the laws table).
+# Every listing of the friction sets outside the code (comments in msg, srv and launch files,
+# docs) is the program's list, `simulate --list-friction-sets` (the laws table).
 add_test(NAME friction_sets_listed_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/docs/friction_sets_listed_test.py
           --simulate $<TARGET_FILE:simulate>)
