@@ -195,6 +195,25 @@ TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
                      "x/y and x_y");
 }
 
+TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {
+  // a box of 0.1 m centred on the ground: 5 cm deep; the node starts and says so once
+  const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_overlap.urdf";
+  std::ofstream(path) << "<robot name=\"r\"><link name=\"b\"><inertial><mass value=\"1\"/>"
+                         "<inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" "
+                         "izz=\"0.01\"/></inertial><collision name=\"shell\"><geometry>"
+                         "<box size=\"0.1 0.1 0.1\"/></geometry></collision></link></robot>";
+  bool services_up = false;
+  const NodeRun run = RunNode({"__name:=overlap", "_urdf_file:=" + path, "_paused:=true"}, [&] {
+    services_up = ros::service::exists("/overlap/get_state", false);
+    return services_up;
+  });
+  EXPECT_TRUE(services_up) << "stderr:\n" << run.err;
+  EXPECT_FALSE(run.exited) << "exit code " << run.exit_code << ", stderr:\n" << run.err;
+  const std::string all = run.out + run.err;
+  EXPECT_NE(all.find("collisions \"shell\" and \"ground\" overlap by 0.05 m"), std::string::npos)
+      << all;
+}
+
 TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {
   // the node comes up (its services appear) and stops cleanly on SIGINT: the failures above are
   // the fixtures' own
