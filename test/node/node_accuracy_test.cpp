@@ -71,17 +71,6 @@ std::optional<double> PegTouchdown(ros::NodeHandle& nh, Recorder<ContactSteps>* 
   return touchdown;
 }
 
-bool Value(const diagnostic_msgs::DiagnosticStatus& status, const std::string& key,
-           double* value) {
-  for (const auto& kv : status.values) {
-    if (kv.key == key) {
-      *value = std::stod(kv.value);
-      return true;
-    }
-  }
-  return false;
-}
-
 TEST(NodeAccuracy, SettingsAreReportedAndOutOfRangeIsRefused) {
   ros::NodeHandle nh;
   GetSolverProperties get = Call<GetSolverProperties>(nh, kNode + "get_solver_properties");
@@ -113,8 +102,8 @@ TEST(NodeAccuracy, TouchesDownWithTheFineFixedStepAndSamplesOnTheTicks) {
   ASSERT_TRUE(diagnostics.WaitForMessage(
       [&](const diagnostic_msgs::DiagnosticArray& m) {
         for (const auto& status : m.status) {
-          if (Value(status, "accepted steps (accuracy, in total)", &accepted) &&
-              Value(status, "largest step [s] (accuracy)", &largest) && accepted > 0.0) {
+          if (DiagnosticValue(status, "accepted steps (accuracy, in total)", &accepted) &&
+              DiagnosticValue(status, "largest step [s] (accuracy)", &largest) && accepted > 0.0) {
             return true;
           }
         }

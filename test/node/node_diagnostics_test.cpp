@@ -19,17 +19,6 @@ namespace {
 
 constexpr double kDuration = 0.05;  // node_diagnostics_test.test [s]
 
-bool Value(const diagnostic_msgs::DiagnosticStatus& status, const std::string& key,
-           double* value) {
-  for (const auto& kv : status.values) {
-    if (kv.key == key) {
-      *value = std::stod(kv.value);
-      return true;
-    }
-  }
-  return false;
-}
-
 TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
   ros::NodeHandle nh;
   Recorder<diagnostic_msgs::DiagnosticArray> diagnostics(nh, "/diagnostics");
@@ -41,8 +30,8 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
   const auto after_the_run = [&](const diagnostic_msgs::DiagnosticArray& m) {
     double running = 0.0, sim_time = 0.0;
     for (const auto& status : m.status) {
-      if (Value(status, "running wall time in period [s]", &running) &&
-          Value(status, "sim time [s]", &sim_time) && running == 0.0 &&
+      if (DiagnosticValue(status, "running wall time in period [s]", &running) &&
+          DiagnosticValue(status, "sim time [s]", &sim_time) && running == 0.0 &&
           sim_time > kDuration - 1e-9) {
         return true;
       }
@@ -58,8 +47,8 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
   for (const auto& m : diagnostics.Messages()) {
     for (const auto& status : m.status) {
       double factor = 0.0, running = 0.0;
-      if (Value(status, "running wall time in period [s]", &running) && running > 0.0 &&
-          Value(status, "real-time factor", &factor)) {
+      if (DiagnosticValue(status, "running wall time in period [s]", &running) && running > 0.0 &&
+          DiagnosticValue(status, "real-time factor", &factor)) {
         ++periods_that_ran;
         EXPECT_GT(factor, 0.0);
         advanced += factor * running;

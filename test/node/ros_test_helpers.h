@@ -3,6 +3,7 @@
 #ifndef NONSMOOTH_SIM_TEST_NODE_ROS_TEST_HELPERS_H_
 #define NONSMOOTH_SIM_TEST_NODE_ROS_TEST_HELPERS_H_
 
+#include <diagnostic_msgs/DiagnosticStatus.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <tf2_msgs/TFMessage.h>
@@ -25,6 +26,18 @@ namespace nonsmooth_sim::node::test {
 
 /// The node's private namespace in the launch file.
 inline const std::string kNode = "/nonsmooth_sim/";
+
+/// The number a /diagnostics status holds under `key`; false if it has none.
+inline bool DiagnosticValue(const diagnostic_msgs::DiagnosticStatus& status,
+                            const std::string& key, double* value) {
+  for (const auto& kv : status.values) {
+    if (kv.key == key) {
+      *value = std::stod(kv.value);
+      return true;
+    }
+  }
+  return false;
+}
 
 /// Polls `condition` every millisecond until it holds or `timeout` wall seconds pass.
 inline bool WaitFor(const std::function<bool()>& condition, double timeout) {
