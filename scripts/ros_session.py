@@ -63,6 +63,18 @@ def tf_samples(message):
     return samples
 
 
+def run_tests(module_globals):
+    """The entry of a unittest file that ctest runs with --build-dir BUILD: sets the file's
+    BUILD_DIR (realpath), hands the other arguments to unittest (its tests are in __main__)."""
+    import argparse
+    import unittest
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build-dir", required=True)
+    args, rest = parser.parse_known_args()
+    module_globals["BUILD_DIR"] = os.path.realpath(args.build_dir)
+    unittest.main(module="__main__", argv=[sys.argv[0]] + rest, verbosity=2)
+
+
 def inside(folder, name):
     """folder/name, refusing anything that would leave `folder`."""
     path = os.path.realpath(os.path.join(folder, name))

@@ -8,7 +8,6 @@ call that hangs while paused) fails here.
 
 Run by ctest: test/docs/readme_commands_test.py --build-dir BUILD
 """
-import argparse
 import os
 import re
 import shlex
@@ -18,7 +17,8 @@ import unittest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from ros_session import NODE, Session  # noqa: E402
+from ros_session import NODE, Session, run_tests  # noqa: E402
+BUILD_DIR = None  # the build folder, set by run_tests from --build-dir
 
 TIMEOUT = 60.0  # [wall s] per command
 
@@ -76,8 +76,4 @@ class ReadmeCommands(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build-dir", required=True)
-    args, rest = parser.parse_known_args()
-    BUILD_DIR = os.path.realpath(args.build_dir)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    run_tests(globals())

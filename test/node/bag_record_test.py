@@ -8,7 +8,6 @@ contacts only, named "<first collision>/<second collision>" (the spinning top st
 
 Run by ctest: test/node/bag_record_test.py --build-dir BUILD
 """
-import argparse
 import os
 import subprocess
 import sys
@@ -18,7 +17,8 @@ import rosbag
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from ros_session import tf_samples  # noqa: E402
+from ros_session import run_tests, tf_samples  # noqa: E402
+BUILD_DIR = None  # the build folder, set by run_tests from --build-dir
 
 DURATION = 2.0       # [s] of simulated time
 TIME_STEP = 1e-4     # the node's default ~time_step [s]
@@ -115,8 +115,4 @@ class RecordedBag(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build-dir", required=True)
-    args, rest = parser.parse_known_args()
-    BUILD_DIR = os.path.realpath(args.build_dir)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    run_tests(globals())

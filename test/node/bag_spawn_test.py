@@ -8,7 +8,6 @@ at a multiple of the 10-step tf period, and each top's frame moves (they spin an
 
 Run by ctest: test/node/bag_spawn_test.py --build-dir BUILD
 """
-import argparse
 import os
 import subprocess
 import sys
@@ -19,7 +18,8 @@ import rosbag
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from ros_session import NODE, Session, tf_samples, wait_for  # noqa: E402
+from ros_session import NODE, Session, run_tests, tf_samples, wait_for  # noqa: E402
+BUILD_DIR = None  # the build folder, set by run_tests from --build-dir
 
 TIME_STEP = 1e-4   # the node's default ~time_step [s]
 TF_PERIOD = 10     # steps: /tf at 1 kHz of sim time
@@ -137,8 +137,4 @@ class SpawnDeleteBag(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build-dir", required=True)
-    args, rest = parser.parse_known_args()
-    BUILD_DIR = os.path.realpath(args.build_dir)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    run_tests(globals())
