@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The speed-accuracy trade study of the Tippe-Top (issue 4), run by `scripts/tradeoff`.
+"""The speed-accuracy trade study of the Tippe-Top, run by `scripts/tradeoff`.
 
 Runs the headless `simulate` over a grid friction set x solver x dt x tolerance, a converged
 reference per friction law (and the same reference with dt and tolerance halved, to show it is

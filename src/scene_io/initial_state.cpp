@@ -177,27 +177,17 @@ void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d&
 
 InitialStateSpec ParseInitialStateYaml(const std::string& yaml_text) {
   // the bounds before yaml-cpp allocates anything (bounded_input.h)
-  try {
-    CheckYamlText(yaml_text);
-  } catch (const std::invalid_argument& e) {
-    throw InitialStateError(std::string("initial state: ") + e.what());
-  }
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw InitialStateError("initial state (line " + std::to_string(e.mark.line + 1) +
-                            ", column " + std::to_string(e.mark.column + 1) +
-                            "): not valid YAML: " + e.msg);
-  }
-  if (documents.size() > 1) {
-    Fail("the text", Line(documents[1]),
-         "holds " + std::to_string(documents.size()) +
-             " YAML documents (a second one after --- or text after ...); allowed: one");
-  }
+  const YAML::Node root = [&] {
+    try {
+      return LoadOneYamlDocument(yaml_text);
+    } catch (const YamlTextError& e) {
+      throw InitialStateError("initial state (line " + std::to_string(e.line) + ", column " +
+                              std::to_string(e.column) + "): " + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InitialStateError(std::string("initial state: ") + e.what());
+    }
+  }();
   InitialStateSpec spec;
-  if (documents.empty()) return spec;  // no document
-  const YAML::Node root = documents.front();
   if (root.IsNull()) return spec;  // an empty document
   if (!root.IsMap()) {
     Fail("the document", Line(root), "not a map; expected the key bodies: {<link>: {...}}");

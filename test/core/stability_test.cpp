@@ -1,4 +1,4 @@
-// Stability at the extremes (issue 4): the simulator stays finite, bounded and honest at the
+// Stability at the extremes: the simulator stays finite, bounded and honest at the
 // edges of every documented parameter range. Every case runs the Tippe-Top (tippe_top.h) or a
 // smaller scene that isolates the point, and checks after every step:
 //  - no NaN or inf anywhere in the state, quaternions unit;
@@ -15,7 +15,7 @@
 // Bad parameters are rejected with std::invalid_argument naming the parameter and its range
 // before anything runs. Measured values are written next to each bound (Release build).
 // BadScaling.ModifiedIterationConvergesWhereJacobiStalls fails on purpose until the defect it
-// exposes is fixed ((43) claims convergence while stalled; issue 4 report).
+// exposes is fixed ((43) claims convergence while stalled).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -1113,7 +1113,7 @@ TEST(BadScaling, ModifiedIterationConvergesWhereJacobiStalls) {
   // a map (56)) and the body sinks (measured 0.19 m resp. 2.4e-4 m after 0.2 s). Every step that
   // does claim convergence must satisfy the normal law: measured today, (43) claims it on 8 resp.
   // 110 steps with the body sinking at up to 1.8 m/s — its increment test |ΔΛ| ≤ tol·|Λ| is
-  // fooled by the tiny steps (see the report of issue 4); this test fails until that is fixed.
+  // fooled by the tiny steps; this test fails until that is fixed.
   // (46) gives the normal block its own step α/G_NN and the non-projecting friction block
   // per-component steps: one iteration per step, Λ_N = m g Δt, no sinking; Gauss-Seidel uses the
   // same equations.

@@ -137,7 +137,7 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      {"~tf_rate", "expected a number"}, "tf_rate");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_5", "_urdf_file:=" + Fixture("absent.urdf")}),
                      {"~urdf_file", "absent.urdf", "no such file"}, "urdf_file");
-  // finite but beyond the bounds of the core's validation (issue 11): the node ran 2^31
+  // finite but beyond the bounds of the core's validation: the node ran 2^31
   // iterations per step, or started with an infinite kinetic energy
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_7", urdf, "_max_iterations:=2147483647"}),
                      {"max_iterations", "<= 100000 in a simulation", "2147483647"},

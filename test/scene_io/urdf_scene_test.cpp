@@ -846,7 +846,7 @@ TEST(UrdfLoader, MalformedUrdfsGiveOneLineNamingElementAndReason) {
   }
 }
 
-// --- bounds (issue 11: what loads is a simulable rigid body) -------------------------------------
+// --- bounds: what loads is a simulable rigid body -------------------------------------
 
 // An inertial of mass `mass` and principal moments `ixx iyy izz` (plus `extra` attributes, e.g.
 // products of inertia, and an origin `xyz`).

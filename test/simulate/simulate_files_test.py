@@ -79,7 +79,7 @@ class SimulateFiles(unittest.TestCase):
         with open(yaml, "w") as f:
             f.write("bodies: {}\n---\nbodies: {}\n")
         self.expect_refusal(["--urdf", URDF, "--initial", yaml],
-                            "holds 2 YAML documents")
+                            "(line 2, column 1): a second YAML document")
 
     def test_out_of_memory_is_one_line_and_exit_4(self):
         # the CSV is reserved up front: 10^6 rows (decimate 10) of 20 columns, 160 MB, beyond
