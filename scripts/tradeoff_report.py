@@ -857,7 +857,7 @@ def write_markdown(path, grid, rows, checks, cross, refs, gyro_rows, decoupled_r
                  "lets the contact sink by an O(Δt²) curvature term that the velocity-level "
                  "constraint of (14) does not see, so the gap drifts linearly in time (z_S < 0 "
                  "means the centre of mass is below the floor): the step corrects velocities, "
-                 "never positions. test/core/stability_test.cpp (LongRun) tracks this.")
+                 "never positions. test/core/stability_long_test.cpp (LongRun) tracks this.")
         L.append("")
 
     with open(path, "w") as f:
