@@ -184,9 +184,7 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
 }
 
 std::string SimulationNode::WrenchTopic(std::size_t slot) const {
-  return "wrench/" +
-         GraphName(world_->sim().scene().colliders[static_cast<std::size_t>(frames_.slots[slot])]
-                       .name);
+  return "wrench/" + frames_.topics[slot];
 }
 
 void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {

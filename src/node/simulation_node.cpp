@@ -89,10 +89,9 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", batched_queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
-  for (int collider : frames_.slots) {
-    const std::string& name = world_->urdf().scene.colliders[static_cast<std::size_t>(collider)].name;
+  for (const std::string& topic : frames_.topics) {
     wrench_pubs_.push_back(
-        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + GraphName(name), queue));
+        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + topic, queue));
   }
   wrench_closed_.assign(frames_.slots.size(), false);
 

@@ -35,7 +35,7 @@ bool SimulationNode::OnGetModelProperties(GetModelProperties::Request& req,
   }
   const world::Model& model = models.at(m);
   const Scene& scene = world_->sim().scene();
-  for (int b : model.bodies) res.body_names.push_back(world_->ScopedBodyName(b));
+  for (int b : model.bodies) res.body_names.push_back(world_->BodyName(b));
   if (!res.body_names.empty()) res.canonical_body_name = res.body_names.front();
   std::string sets;
   for (int c : model.colliders) {
@@ -77,7 +77,7 @@ bool SimulationNode::OnGetModelState(GetModelState::Request& req, GetModelState:
   res.twist.angular.y = f.twist.angular.y();
   res.twist.angular.z = f.twist.angular.z();
   res.success = true;
-  res.status_message = "pose and twist of " + world_->ScopedBodyName(f.body);
+  res.status_message = "pose and twist of " + world_->BodyName(f.body);
   return true;
 }
 
@@ -120,7 +120,7 @@ bool SimulationNode::OnApplyBodyWrench(ApplyBodyWrench::Request& req,
     return true;
   }
   res.success = true;
-  res.status_message = applied ? "applied to " + world_->ScopedBodyName(applied->body) +
+  res.status_message = applied ? "applied to " + world_->BodyName(applied->body) +
                                      " from t = " + std::to_string(applied->start) + " s"
                                : std::string("duration 0: nothing to apply");
   return true;

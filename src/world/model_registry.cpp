@@ -40,9 +40,9 @@ const Model* ModelRegistry::StartUp() const {
   return nullptr;
 }
 
-int ModelRegistry::ScopedBodyIndex(const Scene& scene, const std::string& name) const {
-  // "<model>::<link>", or the body's own name ("<link>" of the start-up model, "<model>/<link>" of
-  // a spawned one)
+int ModelRegistry::BodyIndex(const Scene& scene, const std::string& name) const {
+  // the body's name ("<link>" of the start-up model, "<model>/<link>" of a spawned one), or
+  // "<model>::<link>"
   const std::size_t scope = name.find("::");
   if (scope == std::string::npos) {
     for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
@@ -60,23 +60,13 @@ int ModelRegistry::ScopedBodyIndex(const Scene& scene, const std::string& name) 
   return -1;
 }
 
-std::string ModelRegistry::ScopedBodyName(const Scene& scene, int body) const {
-  const std::string& name = scene.bodies[static_cast<std::size_t>(body)].name;
-  for (const Model& m : models_) {
-    for (int b : m.bodies) {
-      if (b == body) return m.name + "::" + name.substr(m.prefix.size());
-    }
-  }
-  return name;
-}
-
 int ModelRegistry::ReferenceBody(const Scene& scene, const std::string& name,
                                  const char* field) const {
   if (name.empty() || name == "world") return -1;
-  const int body = ScopedBodyIndex(scene, name);
+  const int body = BodyIndex(scene, name);
   if (body < 0) {
     throw std::invalid_argument(std::string(field) + " \"" + name +
-                                "\" is neither \"world\" nor a body (\"<model>::<link>\" or "
+                                "\" is neither \"world\" nor a body (\"<model>/<link>\" or "
                                 "\"<link>\")");
   }
   return body;

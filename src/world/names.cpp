@@ -18,13 +18,26 @@ std::string GraphName(const std::string& name) {
   return out;
 }
 
+std::string FrameName(const std::string& name) {
+  std::string out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t slash = name.find('/', start);
+    out += GraphName(name.substr(start, slash == std::string::npos ? slash : slash - start));
+    if (slash == std::string::npos) return out;
+    out += '/';
+    start = slash + 1;
+  }
+}
+
 FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame) {
   FrameNames names;
   names.world = world_frame;
   for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
     if (scene.colliders[i].body == kWorld) continue;
     names.slots.push_back(static_cast<int>(i));
-    names.contacts.push_back(GraphName(scene.colliders[i].name) + "_contact");
+    names.contacts.push_back(FrameName(scene.colliders[i].name) + "_contact");
+    names.topics.push_back(FrameName(scene.colliders[i].name));
   }
   names.slot_of_collider.assign(scene.colliders.size(), -1);
   for (std::size_t k = 0; k < names.slots.size(); ++k) {
@@ -43,7 +56,7 @@ std::string FrameNameClash(const Scene& scene, const std::string& world_frame) {
     const auto [it, inserted] = owners.emplace(frame, owner);
     if (inserted) return "";
     return owner + " would have the " + what + " of " + it->second +
-           " (frames and ~wrench/ topics replace every character other than A-Z a-z 0-9 _ by _; "
+           " (frames and ~wrench/ topics replace every character other than A-Z a-z 0-9 _ / by _; "
            "rename one)";
   };
   for (const RigidBody& body : scene.bodies) {
@@ -53,7 +66,7 @@ std::string FrameNameClash(const Scene& scene, const std::string& world_frame) {
   }
   for (const Collider& collider : scene.colliders) {
     if (collider.body == kWorld) continue;
-    const std::string base = GraphName(collider.name);
+    const std::string base = FrameName(collider.name);
     const std::string clash =
         claim(base + "_contact", "collision \"" + collider.name + "\"",
               "contact frame \"" + base + "_contact\" and topic ~wrench/" + base);

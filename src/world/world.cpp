@@ -141,7 +141,7 @@ void World::SetModelState(const std::string& name, const std::string& reference_
   const Frame reference =
       BodyFrame(*sim_, models_.ReferenceBody(sim_->scene(), reference_frame, "reference_frame"));
   std::vector<std::string> names;
-  for (int b : model.bodies) names.push_back(ScopedBodyName(b));
+  for (int b : model.bodies) names.push_back(BodyName(b));
   const std::vector<BodyState> states =
       RigidlyMoved(*sim_, model.bodies, names, reference, pose, twist);
   // validates, throws and changes nothing on bad input; the other models keep their contacts
@@ -149,9 +149,9 @@ void World::SetModelState(const std::string& name, const std::string& reference_
 }
 
 std::optional<ExternalWrench> World::ApplyWrench(const WrenchRequest& request) {
-  const int b = ScopedBodyIndex(request.body);
+  const int b = BodyIndex(request.body);
   Check(b >= 0, "body_name \"" + request.body +
-                    "\" is not a body (\"<model>::<link>\" or \"<link>\" of a free link)");
+                    "\" is not a body (\"<model>/<link>\" or \"<link>\" of a free link)");
   const Frame reference = BodyFrame(
       *sim_, models_.ReferenceBody(sim_->scene(), request.reference_frame, "reference_frame"));
   const Eigen::Vector3d force =
@@ -180,7 +180,7 @@ std::optional<ExternalWrench> World::ApplyWrench(const WrenchRequest& request) {
 }
 
 bool World::ClearWrenches(const std::string& body) {
-  const int b = ScopedBodyIndex(body);
+  const int b = BodyIndex(body);
   if (b < 0) return false;
   wrenches_.Clear(b);
   sim_->SetExternalWrench(b, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());

@@ -413,7 +413,7 @@ void GetFrictionSet(Session& w, FuzzedDataProvider& in) {
 void ApplyBodyWrench(Session& w, FuzzedDataProvider& in) {
   std::vector<std::string> names = BodyNames(w.sim());
   for (std::size_t b = 0; b < w.sim().scene().bodies.size(); ++b) {
-    names.push_back(w.world->ScopedBodyName(static_cast<int>(b)));
+    names.push_back(w.world->BodyName(static_cast<int>(b)));
   }
   world::WrenchRequest request;
   request.body = PickName(in, names);
@@ -450,7 +450,7 @@ void ClearBodyWrenches(Session& w, FuzzedDataProvider& in) {
     before.RequireUnchanged(*w.world, "~clear_body_wrenches of no body");
     return;
   }
-  const int b = w.world->ScopedBodyIndex(name);
+  const int b = w.world->BodyIndex(name);
   const auto [f, t] = w.sim().ExternalWrench(b);
   Require(f.isZero(0.0) && t.isZero(0.0), "~clear_body_wrenches: a wrench is left");
   for (const world::ExternalWrench& x : w.world->wrenches().wrenches()) {

@@ -1,6 +1,7 @@
-// The world's models and names: a spawned model's parts are "<model>/<part>" in the scene and
-// "<model>::<link>" to the services; a refused spawn or delete leaves the world bit for bit as it
-// was; a delete renumbers the models that stay.
+// The world's models and names: a spawned model's parts are "<model>/<part>" everywhere (scene,
+// services, frames, topics; Gazebo's "<model>::<link>" accepted as input), the start-up model's
+// their URDF names; a refused spawn or delete leaves the world bit for bit as it was; a delete
+// renumbers the models that stay.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,7 +34,7 @@ TEST(ModelRegistry, StartUpModelKeepsUrdfNamesAndSpawnedOnesArePrefixed) {
   World w = BallWorld();
   ASSERT_EQ(w.models().models().size(), 1u);
   EXPECT_EQ(w.models().models()[0].name, "start");
-  EXPECT_EQ(w.ScopedBodyName(0), "start::ball");
+  EXPECT_EQ(w.BodyName(0), "ball");
 
   const Model& m = w.Spawn("box2", Load(BallUrdf(), 9.81, false).scene, "", At(1, 0, 0.05), "d");
   EXPECT_EQ(m.prefix, "box2/");
@@ -42,11 +43,19 @@ TEST(ModelRegistry, StartUpModelKeepsUrdfNamesAndSpawnedOnesArePrefixed) {
   EXPECT_EQ(w.sim().scene().bodies[static_cast<std::size_t>(b)].name, "box2/ball");
   EXPECT_EQ(w.sim().scene().colliders[static_cast<std::size_t>(m.colliders[0])].name,
             "box2/shell");
-  EXPECT_EQ(w.ScopedBodyName(b), "box2::ball");
-  EXPECT_EQ(w.ScopedBodyIndex("box2::ball"), b);
-  EXPECT_EQ(w.ScopedBodyIndex("box2/ball"), b);  // its scene name addresses it too
-  EXPECT_EQ(w.ScopedBodyIndex("start::ball"), 0);
-  EXPECT_EQ(w.ScopedBodyIndex("box2::nothing"), -1);
+  EXPECT_EQ(w.BodyName(b), "box2/ball");
+  EXPECT_EQ(w.BodyIndex("box2/ball"), b);
+  EXPECT_EQ(w.BodyIndex("box2::ball"), b);  // Gazebo's spelling addresses it too
+  EXPECT_EQ(w.BodyIndex("ball"), 0);
+  EXPECT_EQ(w.BodyIndex("start::ball"), 0);
+  // its collision's contact frame and wrench topic carry the same name
+  const FrameNames frames = MakeFrameNames(w.sim().scene(), "world");
+  ASSERT_EQ(frames.contacts.size(), 2u);
+  EXPECT_EQ(frames.contacts[1], "box2/shell_contact");
+  EXPECT_EQ(frames.topics[1], "box2/shell");  // ~wrench/box2/shell
+  EXPECT_EQ(frames.contacts[0], "shell_contact");
+  EXPECT_EQ(frames.topics[0], "shell");
+  EXPECT_EQ(w.BodyIndex("box2::nothing"), -1);
   // placed where asked: S of the ball at the spawn pose
   EXPECT_NEAR(w.sim().state()[static_cast<std::size_t>(b)].position.x(), 1.0, 1e-15);
   // the configured start (reset_world) holds it too
@@ -136,6 +145,25 @@ TEST(ModelRegistry, DeleteRenumbersTheModelsThatStayAndDropsTheirWrenches) {
   EXPECT_EQ(w.sim().state()[1].position, b_before.position);
   EXPECT_TRUE(w.wrenches().wrenches().empty());  // the wrench on a's ball went with it
   EXPECT_EQ(w.configured_scene().bodies.size(), 2u);
+}
+
+TEST(Names, FrameNamesKeepTheModelSeparatorAndSanitiseEachSegment) {
+  EXPECT_EQ(FrameName("top2/big_sphere"), "top2/big_sphere");
+  EXPECT_EQ(FrameName("peg sphere/2"), "peg_sphere/_2");
+  EXPECT_EQ(FrameName("a//b"), "a/_/b");
+  // names that would share a frame after sanitising are found, both owners named
+  Scene scene = Load(BallUrdf(), 9.81, true).scene;
+  scene.colliders.push_back(scene.colliders[0]);  // after the ground: a second one on the ball
+  scene.colliders[0].name = "x_y";
+  scene.colliders.back().name = "x-y";
+  EXPECT_EQ(FrameNameClash(scene, "world").rfind(
+                "collision \"x-y\" would have the contact frame \"x_y_contact\" and topic "
+                "~wrench/x_y of collision \"x_y\"",
+                0),
+            0u)
+      << FrameNameClash(scene, "world");
+  scene.colliders.back().name = "x/y";  // a separator, not sanitised: its own frame
+  EXPECT_EQ(FrameNameClash(scene, "world"), "");
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ namespace nonsmooth_sim::node {
 ros::Time StampOf(double sim_time);
 
 // the world's names (world/names.h): frames, topics, and the one-owner rule
+using world::FrameName;
 using world::FrameNameClash;
 using world::FrameNames;
 using world::GraphName;

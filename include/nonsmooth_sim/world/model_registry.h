@@ -1,9 +1,9 @@
 // The models of the world (get_world_properties): which bodies and collisions of the simulator's
 // scene belong to which model, and how a model's parts are named.
 //
-// Names: the start-up model's bodies and collisions keep their URDF names; a spawned model's are
-// "<model>/<link>" and "<model>/<collision>" in the scene (so its TF frames are "<model>/<link>").
-// A body is addressed as "<model>::<link>" (as Gazebo) or by its name in the scene.
+// Names (names.h): the start-up model's bodies and collisions keep their URDF names; a spawned
+// model's are "<model>/<link>" and "<model>/<collision>". A body's name is its TF frame and what
+// the services take and reply; "<model>::<link>" (Gazebo's spelling) is accepted too.
 #ifndef NONSMOOTH_SIM_WORLD_MODEL_REGISTRY_H_
 #define NONSMOOTH_SIM_WORLD_MODEL_REGISTRY_H_
 
@@ -47,10 +47,8 @@ class ModelRegistry {
   /// The start-up model (prefix ""), or nullptr once deleted.
   const Model* StartUp() const;
 
-  /// "<model>::<link>" or a body's name in `scene`; -1 if none.
-  int ScopedBodyIndex(const Scene& scene, const std::string& name) const;
-  /// "<model>::<link>" of body `body` (its scene name if no model holds it).
-  std::string ScopedBodyName(const Scene& scene, int body) const;
+  /// The body named `name` (its name, or "<model>::<link>"); -1 if none.
+  int BodyIndex(const Scene& scene, const std::string& name) const;
   /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
   /// `field` for anything else that is not a body.
   int ReferenceBody(const Scene& scene, const std::string& name, const char* field) const;

@@ -38,7 +38,7 @@ struct WorldConfig {
 /// (in that frame) for `duration` [s] from `start` [s] of sim time (start before now: now;
 /// duration < 0: until cleared; 0: nothing).
 struct WrenchRequest {
-  std::string body;             ///< "<model>::<link>" or the body's scene name
+  std::string body;             ///< the body's name ("<model>/<link>"; or "<model>::<link>")
   std::string reference_frame;  ///< "" or "world", or a body
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
@@ -104,12 +104,12 @@ class World {
   /// A fresh simulator over the configured start with the configured options; time kept.
   void ResetSimulation();
 
-  /// "<model>::<link>" of body `body`.
-  std::string ScopedBodyName(int body) const { return models_.ScopedBodyName(sim_->scene(), body); }
-  /// The body a name addresses ("<model>::<link>" or its scene name), -1 if none.
-  int ScopedBodyIndex(const std::string& name) const {
-    return models_.ScopedBodyIndex(sim_->scene(), name);
+  /// The name of body `body` (names.h: "<model>/<link>", or "<link>" of the start-up model).
+  const std::string& BodyName(int body) const {
+    return sim_->scene().bodies[static_cast<std::size_t>(body)].name;
   }
+  /// The body a name addresses (its name, or "<model>::<link>"), -1 if none.
+  int BodyIndex(const std::string& name) const { return models_.BodyIndex(sim_->scene(), name); }
 
  private:
   const scene_io::UrdfScene urdf_;  ///< the start-up model
