@@ -31,6 +31,11 @@ add_test(NAME simulate_files_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_files_test.py
           $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
 set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300)
+# `simulate --schedule` runs the documented example and each event has its effect in the CSV
+add_test(NAME simulate_schedule_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_schedule_test PROPERTIES TIMEOUT 300)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:

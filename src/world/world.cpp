@@ -25,7 +25,31 @@ Scene ConfiguredScene(const scene_io::UrdfScene& urdf, int body, const WorldConf
   return scene;
 }
 
+scene_io::UrdfScene AsUrdf(Scene scene, const std::string& name) {
+  scene_io::UrdfScene urdf;
+  urdf.robot_name = name;
+  urdf.tippe_top.assign(scene.bodies.size(), std::nullopt);  // every body a general one
+  urdf.scene = std::move(scene);
+  return urdf;
+}
+
+WorldConfig ConfigOf(const std::string& name, const SimulatorOptions& options) {
+  WorldConfig config;
+  config.model_name = name;
+  config.simulator = options;
+  return config;
+}
+
 }  // namespace
+
+World::World(Scene scene, const std::string& model_name, const SimulatorOptions& options)
+    : urdf_(AsUrdf(scene, model_name)),
+      config_(ConfigOf(model_name, options)),
+      initial_body_(0),
+      configured_(std::move(scene)) {
+  sim_ = std::make_unique<Simulator>(configured_, config_.simulator);
+  models_.Reset(model_name, sim_->scene());
+}
 
 World::World(scene_io::UrdfScene urdf, WorldConfig config)
     : urdf_(std::move(urdf)),

@@ -52,6 +52,10 @@ class World {
   /// The start-up model `urdf` at its configured start (StartState of config's ~initial/... and
   /// ~initial_state/...). Throws std::invalid_argument with one line.
   World(scene_io::UrdfScene urdf, WorldConfig config);
+  /// A world over a scene built elsewhere (`simulate`: the built-in Tippe-Top or a URDF with its
+  /// YAML start), its initial_state the configured start: one start-up model `model_name`, a
+  /// Simulator(scene, options) exactly as without a world.
+  World(Scene scene, const std::string& model_name, const SimulatorOptions& options);
 
   Simulator& sim() { return *sim_; }
   const Simulator& sim() const { return *sim_; }
