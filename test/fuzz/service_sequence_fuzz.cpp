@@ -122,7 +122,7 @@ struct Snapshot {
   std::vector<std::string> configured;  // the configured start's bodies
   std::vector<BodyState> configured_state;
 
-  explicit Snapshot(const world::Session& world) : Snapshot(world.sim()) {
+  explicit Snapshot(const world::World& world) : Snapshot(world.sim()) {
     for (const world::Model& m : world.models().models()) {
       models.push_back(m.name + "|" + m.prefix + "|" + std::to_string(m.bodies.size()) + "|" +
                        std::to_string(m.colliders.size()));
@@ -164,7 +164,7 @@ struct Snapshot {
            a.gyroscopic == b.gyroscopic && a.gap_correction == b.gap_correction;
   }
 
-  void RequireUnchanged(const world::Session& world, const std::string& request) const {
+  void RequireUnchanged(const world::World& world, const std::string& request) const {
     const Snapshot now(world);
     Require(now.models == models, request + ": rejected, but the models changed");
     Require(now.scheduled.size() == scheduled.size(),

@@ -147,6 +147,22 @@ TEST(ModelRegistry, DeleteRenumbersTheModelsThatStayAndDropsTheirWrenches) {
   EXPECT_EQ(w.configured_scene().bodies.size(), 2u);
 }
 
+TEST(Names, AContactOfTwoSpawnedCollisionsIsAddressedByItsName) {
+  World w = BallWorld();
+  const Scene ball = Load(BallUrdf(), 9.81, false).scene;
+  w.Spawn("p", ball, "", At(1, 0, 0.05), "dp");
+  w.Spawn("q", ball, "", At(2, 0, 0.05), "dq");
+  // "<collision>/<collision>" of two names that hold a '/' themselves
+  const FrictionSet before = w.sim().FrictionSetOf("p/shell/q/shell");
+  const FrictionSet other = before == FrictionSet::kCoulomb ? FrictionSet::kSphere
+                                                            : FrictionSet::kCoulomb;
+  w.sim().SetFrictionSet(other, "q/shell/p/shell");
+  EXPECT_EQ(w.sim().FrictionSetOf("p/shell/q/shell"), other);
+  EXPECT_EQ(w.sim().FrictionSetOf("p/shell/shell"), before);  // another pair keeps its set
+  EXPECT_THROW(w.sim().FrictionSetOf("p/shell/p/shell"), std::invalid_argument);
+  EXPECT_THROW(w.sim().FrictionSetOf("p/shell/nothing"), std::invalid_argument);
+}
+
 TEST(Names, FrameNamesKeepTheModelSeparatorAndSanitiseEachSegment) {
   EXPECT_EQ(FrameName("top2/big_sphere"), "top2/big_sphere");
   EXPECT_EQ(FrameName("peg sphere/2"), "peg_sphere/_2");
