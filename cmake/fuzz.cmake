@@ -6,7 +6,7 @@
 #   scene_yaml_fuzz         bytes = initial-state YAML applied to shipped scenes, a few steps
 #   service_sequence_fuzz   bytes -> a sequence of the node's service requests against a Simulator
 #
-# The fuzzed code (core, scene loader, FCL pairs and the node's ROS-free initial conditions) is
+# The fuzzed code (core, scene loader, FCL pairs and the ROS-free world of world/) is
 # compiled once more here into an instrumented library of its own (coverage for libFuzzer,
 # AddressSanitizer, LeakSanitizer, UBSan; assertions on), so the regular libraries and every other
 # target stay exactly as without the option. Included last from CMakeLists.txt (the source lists
@@ -28,7 +28,7 @@ if(NONSMOOTH_SIM_FUZZ)
     ${NONSMOOTH_SIM_CORE_SOURCES}
     ${NONSMOOTH_SIM_SCENE_IO_SOURCES}
     ${NONSMOOTH_SIM_COLLISION_FCL_SOURCES}
-    ${PROJECT_SOURCE_DIR}/src/node/initial_conditions.cpp)  # ROS-free: the node's ~reset checks
+    ${NONSMOOTH_SIM_WORLD_SOURCES})  # ROS-free: the world the node serves
   target_include_directories(nonsmooth_sim_fuzz_instrumented PUBLIC ${PROJECT_SOURCE_DIR}/include)
   target_compile_options(nonsmooth_sim_fuzz_instrumented PRIVATE
     -fsanitize=fuzzer-no-link ${NONSMOOTH_SIM_FUZZ_COMPILE})

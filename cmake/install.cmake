@@ -11,7 +11,7 @@
 
 install(TARGETS simulate nonsmooth_sim_node node_speed_subscriber
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-install(TARGETS nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl nonsmooth_sim_ros
+install(TARGETS nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION}

@@ -6,7 +6,6 @@
 # The node: a library (URDF -> Scene, message conversion, the node class) and a tiny main.
 add_library(nonsmooth_sim_ros STATIC
   src/node/conversions.cpp
-  src/node/initial_conditions.cpp
   src/node/node_parameters.cpp
   src/node/node_services.cpp
   src/node/simulation_node.cpp
@@ -16,7 +15,8 @@ add_library(nonsmooth_sim_ros STATIC
 # cmake/catkin.cmake
 target_include_directories(nonsmooth_sim_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
 target_link_libraries(nonsmooth_sim_ros PUBLIC
-  nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl ${catkin_LIBRARIES})
+  nonsmooth_sim_world nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl
+  ${catkin_LIBRARIES})
 add_dependencies(nonsmooth_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 add_executable(nonsmooth_sim_node src/node/main.cpp)
@@ -46,7 +46,6 @@ if(CATKIN_ENABLE_TESTING)
 
   # URDF conversion, initial conditions and message conversion: no master needed.
   add_executable(node_conversion_test EXCLUDE_FROM_ALL
-    test/node/initial_conditions_test.cpp
     test/node/conversions_test.cpp)
   target_link_libraries(node_conversion_test PRIVATE nonsmooth_sim_ros GTest::gtest GTest::gtest_main)
   target_compile_definitions(node_conversion_test PRIVATE

@@ -7,6 +7,9 @@ nonsmooth_sim_add_gtests(DIR test/core LIBRARIES nonsmooth_sim_core)
 # "scene_io.<Suite>.<Test>" (the node has a urdf_scene_test of its own)
 nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
 nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collision_fcl)
+# the world on its own: "world.<Suite>.<Test>"
+nonsmooth_sim_add_gtests(DIR test/world PREFIX world LIBRARIES nonsmooth_sim_world
+                         nonsmooth_sim_collision_fcl)
 # An independent reference for bodies rolling without slipping (test/reference/rolling_reference.h:
 # Eigen and Boost.Odeint only, nothing of the core), for tests that hold the integrators to it
 # (#include "reference/rolling_reference.h"); its own checks are "reference.<Suite>.<Test>".
@@ -28,6 +31,11 @@ add_test(NAME simulate_files_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_files_test.py
           $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
 set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300)
+# `simulate --schedule` runs the documented example and each event has its effect in the CSV
+add_test(NAME simulate_schedule_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_schedule_test PROPERTIES TIMEOUT 300)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:

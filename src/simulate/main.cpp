@@ -20,6 +20,9 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
+#include "nonsmooth_sim/scene_io/schedule.h"
+#include "nonsmooth_sim/world/world.h"
+#include "schedule_run.h"
 #include "nonsmooth_sim/scene_io/one_line.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 #include "progress.h"
@@ -126,15 +129,23 @@ void WarnExplicitGyroscopicUnsafe(double dt_omega, double t, double dt) {
                kExplicitGyroscopicMaxDtOmega * dt / dt_omega);
 }
 
-// The scene: a URDF (with the options that override its laws, and a YAML start), or the
-// built-in Tippe-Top. Throws std::invalid_argument (a bad file) with one line.
-Scene BuildScene(const RunConfig& config) {
-  if (config.urdf_path.empty()) return MakeTippeTopScene(config.parameters, config.initial);
+// The loader's options of a URDF: the laws the command line overrides.
+scene_io::UrdfSceneOptions UrdfOptions(const RunConfig& config) {
   scene_io::UrdfSceneOptions options;
   if (config.friction_set_given) options.friction_set = config.parameters.friction_set;
   if (config.mu_given) options.mu = config.parameters.mu;
   if (config.contact_radius_given) options.contact_radius = config.parameters.contact_radius;
-  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, options);
+  return options;
+}
+
+// The scene: a URDF (with the options that override its laws, and a YAML start), or the
+// built-in Tippe-Top; `name` its model's name. Throws std::invalid_argument (a bad file) with
+// one line.
+Scene BuildScene(const RunConfig& config, std::string* name) {
+  *name = "tippe_top";
+  if (config.urdf_path.empty()) return MakeTippeTopScene(config.parameters, config.initial);
+  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, UrdfOptions(config));
+  *name = urdf.robot_name;
   for (const std::string& warning : urdf.warnings) {
     std::fprintf(stderr, "simulate: warning: %s\n", warning.c_str());
   }
@@ -162,14 +173,17 @@ void ReportInitialOverlaps(const Simulator& simulator) {
   }
 }
 
+// `schedule`: the events of --schedule before each step (nullptr: none).
 template <typename RecordRow>
-void RunFixed(const RunConfig& config, long steps, Simulator* simulator, RunMonitor* monitor,
-              ProgressBar* progress, const RecordRow& record_row) {
+void RunFixed(const RunConfig& config, long steps, world::World* world, ScheduleRunner* schedule,
+              RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
+  Simulator* simulator = &world->sim();
   const bool record = !config.csv_path.empty();
   const double dt = config.options.time_step;
   StepStatistics stats;
   bool warned = false;
   for (long step = 1; step <= steps; ++step) {
+    if (schedule != nullptr) schedule->Before(world, static_cast<double>(step - 1) * dt, dt);
     simulator->Step(&stats);
     const double t = static_cast<double>(step) * dt;
     if (!stats.state_finite) {
@@ -236,7 +250,15 @@ void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* s
 }
 
 int Run(const RunConfig& config) {
-  Simulator simulator(BuildScene(config), config.options);
+  // the world the node serves, over the same Simulator(scene, options)
+  std::string name;
+  Scene scene = BuildScene(config, &name);
+  world::World world(std::move(scene), name, config.options);
+  Simulator& simulator = world.sim();
+  std::optional<ScheduleRunner> schedule;
+  if (!config.schedule_path.empty()) {
+    schedule.emplace(scene_io::LoadScheduleFile(config.schedule_path), UrdfOptions(config));
+  }
   ReportInitialOverlaps(simulator);
   const long steps = std::llround(config.duration / config.options.time_step);
 
@@ -255,7 +277,11 @@ int Run(const RunConfig& config) {
   if (config.urdf_path.empty()) {
     tippe_csv.emplace(simulator, rows);
   } else {
-    body_csv.emplace(simulator, rows);
+    if (schedule) {
+      body_csv.emplace(schedule->BodyColumns(simulator.scene()), rows);
+    } else {
+      body_csv.emplace(simulator, rows);
+    }
   }
   auto record_row = [&](double t, const StepStatistics& s) {
     if (tippe_csv) tippe_csv->Record(t, simulator, s);
@@ -274,7 +300,8 @@ int Run(const RunConfig& config) {
     RunAdaptive(config, &stepper, &simulator, &monitor, &progress, record_row);
     monitor.SetAdaptive(stepper.statistics());
   } else {
-    RunFixed(config, steps, &simulator, &monitor, &progress, record_row);
+    RunFixed(config, steps, &world, schedule ? &*schedule : nullptr, &monitor, &progress,
+             record_row);
   }
   const auto stop = std::chrono::steady_clock::now();
   const double cpu_time = ThreadCpuSeconds() - cpu_start;

@@ -111,12 +111,17 @@ class CsvRecorder {
 class BodyCsvRecorder {
  public:
   BodyCsvRecorder(const Simulator& simulator, long expected_rows);
+  /// Columns for the bodies named `bodies` (`simulate --schedule`: every body the run will
+  /// hold); a body the simulator does not hold at a row writes NaN.
+  BodyCsvRecorder(const std::vector<std::string>& bodies, long expected_rows);
   void Record(double time, const Simulator& simulator, const StepStatistics& stats);
   bool Write(const std::string& path) const;
 
  private:
   std::vector<std::string> columns_;
   std::vector<double> values_;
+  std::vector<std::string> bodies_;  ///< by name (second constructor); empty: every body in order
+  void AppendBody(const Simulator& simulator, std::size_t b);  ///< its 13 values
 };
 
 /// Writes header and rows (numbers with 15 significant digits); false if it cannot.

@@ -177,7 +177,7 @@ TEST(NodeBadUrdf, DevicesFifosAndOversizeFilesAreRefusedBeforeReading) {
 }
 
 // Names that would share a TF frame or a ~wrench/ topic after sanitising stop the start-up, naming
-// both (collisions "x/y" and "x_y" published one frame with two transforms per stamp).
+// both (collisions "x-y" and "x_y" would publish one frame with two transforms per stamp).
 TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
   const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_clash.urdf";
   const std::string inertial =
@@ -188,11 +188,11 @@ TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
            std::to_string(z) + "\"/><geometry><sphere radius=\"0.05\"/></geometry></collision>";
   };
   std::ofstream(path) << "<robot name=\"r\"><link name=\"b\">" << inertial << ball("x_y", 0.0)
-                      << ball("x/y", 0.01) << "</link></robot>";
+                      << ball("x-y", 0.01) << "</link></robot>";
   ExpectOneErrorLine(RunNode({"__name:=name_clash", "_urdf_file:=" + path}),
-                     {"collision \"x/y\" would have the contact frame \"x_y_contact\" and "
+                     {"collision \"x-y\" would have the contact frame \"x_y_contact\" and "
                       "topic ~wrench/x_y of collision \"x_y\""},
-                     "x/y and x_y");
+                     "x-y and x_y");
 }
 
 TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {

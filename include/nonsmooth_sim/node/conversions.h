@@ -15,6 +15,7 @@
 #include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/SimulationState.h"
 #include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/world/names.h"
 
 namespace nonsmooth_sim::node {
 
@@ -22,22 +23,12 @@ namespace nonsmooth_sim::node {
 /// ros::Time(0) means "no time yet" to nodes on /use_sim_time (and rosbag refuses it).
 ros::Time StampOf(double sim_time);
 
-/// Names of the TF frames and topics of one scene. Every collider on a body is a contact "slot":
-/// a TF frame "<collision>_contact" (at its first closed contact, axes t1, t2, n; without a
-/// contact at the collider's origin with world axes) and a wrench topic ~wrench/<collision>.
-struct FrameNames {
-  std::string world;                  ///< fixed frame
-  std::vector<int> slots;             ///< the colliders on bodies, in scene order
-  std::vector<std::string> contacts;  ///< per slot: "<collision name>_contact"
-  std::vector<int> slot_of_collider;  ///< per collider: its slot, -1 for a static one
-};
-FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
-
-/// "" when every TF frame of `scene` (the fixed frame, each body's frame = its name, each contact
-/// frame of MakeFrameNames) and every ~wrench/ topic belongs to one name only; else one line
-/// naming both owners and the frame, e.g. 'collision "x/y" would have the contact frame
-/// "x_y_contact" and topic ~wrench/x_y of collision "x_y" (...)'.
-std::string FrameNameClash(const Scene& scene, const std::string& world_frame);
+// the world's names (world/names.h): frames, topics, and the one-owner rule
+using world::FrameName;
+using world::FrameNameClash;
+using world::FrameNames;
+using world::GraphName;
+using world::MakeFrameNames;
 
 /// The first closed contact of slot `slot`, or nullptr (a scan of the contacts: O(contacts)).
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot);
@@ -45,9 +36,6 @@ const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, 
 /// Per collider the index in sim.contacts() of its first contact, -1 without one: one pass over
 /// the contacts, so that a message over every slot costs O(contacts + colliders).
 void FirstContacts(const Simulator& sim, std::vector<int>* first);
-
-/// A ROS graph name made of [A-Za-z0-9_] (other characters become '_').
-std::string GraphName(const std::string& name);
 
 /// Pose of the link frame: the body pose composed with the translation -com_in_link.
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state);

@@ -1,5 +1,5 @@
-// The ROS node: serves a core Simulator to ROS (docs/ros.md). It converts between
-// messages and the core and holds no physics.
+// The ROS node: serves a world::World to ROS (docs/ros.md). Its handlers convert a request into a
+// World call and the result into a response; it holds no physics and no world rules.
 //
 // Threads: the integrator runs on its own thread, paced by the wall clock (sim time = wall time ×
 // ~real_time_factor, or as fast as possible for 0); services and the diagnostics wall timer run
@@ -45,6 +45,7 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
 #include "nonsmooth_sim/node/node_parameters.h"
+#include "nonsmooth_sim/world/world.h"
 
 namespace nonsmooth_sim::node {
 
@@ -67,36 +68,6 @@ class SimulationNode {
     std::int64_t period = 0;
     std::int64_t countdown = 0;
   };
-
-  /// A model of the world (get_world_properties): the bodies and colliders of one URDF.
-  struct Model {
-    std::string name;
-    /// of its body and collider names in the core scene (and its TF frames): "" for the start-up
-    /// model, "<name>/" for a spawned one
-    std::string prefix;
-    std::vector<int> bodies;     ///< free bodies; the first is the canonical one
-    std::vector<int> colliders;  ///< its collisions (on its bodies and its static links)
-    std::string description;  ///< the parameter holding its URDF ("" for the start-up model)
-  };
-  /// ~spawn_urdf_model refuses a model that would make the world larger than this many bodies
-  /// (a bound on the work per step).
-  static constexpr std::size_t kMaxWorldBodies = 4096;
-  /// ~spawn_urdf_model refuses a model that would make the world hold more collisions than this
-  /// (a bound on the work per step and on the ~wrench/ topics).
-  static constexpr std::size_t kMaxWorldCollisions = 16384;
-  /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
-  struct ExternalWrench {
-    int body = 0;
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< world axes [N]
-    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< world axes [N m]
-    Eigen::Vector3d point_in_body = Eigen::Vector3d::Zero();  ///< from S, body axes [m]
-    double start = 0.0;
-    double end = 0.0;  ///< +inf: until cleared
-  };
-  /// |force| and |torque| of ~apply_body_wrench at most this [N], [N m].
-  static constexpr double kMaxExternalForce = 1e6;
-  /// ~apply_body_wrench keeps at most this many wrenches at once (a bound on the work per step).
-  static constexpr std::size_t kMaxWrenches = 1000;
 
   /// Accumulated over a diagnostics period (and over the whole run).
   struct RunStatistics {
@@ -190,32 +161,13 @@ class SimulationNode {
   /// made without the simulator mutex. Call with world_mutex_ held.
   void AdvertiseWrenches(WrenchTopics* topics);
   std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
-  void BuildModels();
-  int ModelIndex(const std::string& name) const;       ///< -1 if unknown
-  /// 'no model "<name>"; the models are: a, b' (the reply to an unknown model name)
-  std::string UnknownModel(const std::string& name) const;
-  int ScopedBodyIndex(const std::string& name) const;  ///< "<model>::<link>" or "<link>"; -1
-  std::string ScopedBodyName(int body) const;          ///< "<model>::<link>"
-  /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
-  /// `field` for anything else that is not a body.
-  int ReferenceBody(const std::string& name, const char* field) const;
-  /// Sets the core's external wrenches from wrenches_ for the next `interval` [s] (integrator).
-  void ApplyWrenches(double interval);
-
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  int BodyIndex(const std::string& name) const;    ///< in the world, by its name; -1 if unknown
   std::string FrictionSetSummary() const;
 
   const NodeParameters parameters_;
-  const UrdfScene urdf_;   ///< the start-up model
-  const int initial_body_;  ///< of ~reset, an index into urdf_
-  /// the world with the configured start (reset_simulation, reset_world): the start-up URDF with
-  /// its configured start, and each spawned model at its spawn pose; kept in step with sim_'s
-  /// bodies and colliders (mutex held)
-  Scene configured_scene_;
   FrameNames frames_;  ///< of the current world (WorldChanged)
 
   ros::NodeHandle nh_, private_nh_;
@@ -234,7 +186,8 @@ class SimulationNode {
   bool stop_ = false;
 
   // --- guarded by mutex_
-  std::unique_ptr<Simulator> sim_;
+  /// the world: the simulator, its models, wrenches and the configured start (resets)
+  std::unique_ptr<world::World> world_;
   /// [s] the node's tick, ~time_step: its step with fixed steps; with ~accuracy the unit of ~step
   /// and of the publish periods (the stepper changes sim_'s time step at every step)
   double tick_ = 0.0;
@@ -254,10 +207,6 @@ class SimulationNode {
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;
   RunStatistics period_, total_;
-  std::vector<Model> models_;
-  std::vector<ExternalWrench> wrenches_;
-  bool wrenches_active_ = false;  ///< ApplyWrenches before the next step
-  std::vector<Eigen::Vector3d> wrench_force_, wrench_torque_;  ///< per body, reused
   double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused, up to the last pause
   Clock::time_point unpaused_at_;
   double running_sim_time_ = 0.0;  ///< [s] of sim time the integrator advanced while unpaused

@@ -8,10 +8,13 @@
 #include <string>
 
 #include "nonsmooth_sim/core/tippe_top.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
-#include "nonsmooth_sim/node/node_parameters.h"  // UrdfScene, SceneFromUrdf (from scene_io)
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
+#include "nonsmooth_sim/world/initial_conditions.h"
 
-namespace nonsmooth_sim::node {
+namespace nonsmooth_sim::world {
+
+using scene_io::SceneFromUrdf;
+using scene_io::UrdfScene;
 namespace {
 
 // a body with two spheres off its axis: not a Tippe-Top
@@ -157,4 +160,4 @@ TEST(InitialConditions, NonFiniteAndOutOfRangeValuesAreRejectedByName) {
 }
 
 }  // namespace
-}  // namespace nonsmooth_sim::node
+}  // namespace nonsmooth_sim::world

@@ -1,4 +1,7 @@
-// Initial conditions of the node's scene (parameters ~initial/... and the ~reset service).
+// The start of the world's bodies: one API for every route to it. The node's ~initial/...
+// (one body: inclination, spin, pose, velocities) and ~initial_state/bodies/<link>/... (any body,
+// config/<scene>.yaml loaded as parameters) become one StartSpec, and every start goes through
+// StartState (World::Reset, the ~reset service: InitialState for the one body it moves).
 //
 // inclination θ and spin ω give the Tippe-Top start of ../shared/reference/tippe-top.md: e3
 // tilted about the world x axis by θ, spin ω about the tilted e3, centre of mass at rest, the
@@ -6,8 +9,8 @@
 // exactly the core's TippeTopInitialState. position, orientation and the velocities, when set,
 // replace the corresponding part (with an orientation but no position the body is lowered or
 // raised onto the ground again).
-#ifndef NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_
-#define NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_
+#ifndef NONSMOOTH_SIM_WORLD_INITIAL_CONDITIONS_H_
+#define NONSMOOTH_SIM_WORLD_INITIAL_CONDITIONS_H_
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -18,7 +21,7 @@
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
-namespace nonsmooth_sim::node {
+namespace nonsmooth_sim::world {
 
 // Bounds (scene_io/initial_state.h, the same for every start of the node and of `simulate`):
 // position coordinates within kMaxInitialCoordinate, |v| ≤ kMaxInitialSpeed, |spin| and |ω| ≤
@@ -46,6 +49,18 @@ void ValidateInitialConditions(const InitialConditions& initial);
 std::vector<BodyState> InitialState(const scene_io::UrdfScene& urdf, int body,
                                     const InitialConditions& initial);
 
-}  // namespace nonsmooth_sim::node
+/// The start of a URDF's bodies: `conditions` for `body` (InitialState), then the per-link
+/// states of `bodies` over it (scene_io::ApplyInitialState).
+struct StartSpec {
+  int body = 0;                       ///< the body `conditions` move (an index into the URDF)
+  InitialConditions conditions;       ///< ~initial/...
+  scene_io::InitialStateSpec bodies;  ///< ~initial_state/bodies/<link>/... (or a YAML file)
+};
 
-#endif  // NONSMOOTH_SIM_NODE_INITIAL_CONDITIONS_H_
+/// The start every route goes through: InitialState(urdf, start.body, start.conditions) with the
+/// states of start.bodies applied over it. Throws std::invalid_argument naming the field.
+std::vector<BodyState> StartState(const scene_io::UrdfScene& urdf, const StartSpec& start);
+
+}  // namespace nonsmooth_sim::world
+
+#endif  // NONSMOOTH_SIM_WORLD_INITIAL_CONDITIONS_H_

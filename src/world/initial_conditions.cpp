@@ -1,5 +1,5 @@
 // Initial conditions -> core BodyState. See initial_conditions.h.
-#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/world/initial_conditions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/world/placement.h"
 
-namespace nonsmooth_sim::node {
+namespace nonsmooth_sim::world {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -23,25 +23,6 @@ std::optional<T> Pick(const std::optional<T>& over, const std::optional<T>& def)
 
 void RequireFinite(const char* field, bool finite) {
   if (!finite) throw std::invalid_argument(std::string(field) + " must be finite");
-}
-
-// Height of r_S at which the lowest collider of `body` just touches z = 0 in orientation `q`
-// (its gap against the ground plane by the collision table); `fallback` for a body without
-// colliders the table can put on a plane.
-double TouchingHeight(const Scene& scene, int body, const Eigen::Quaterniond& q, double fallback) {
-  const Shape ground = Shape::Plane();
-  Eigen::Isometry3d body_pose = Eigen::Isometry3d::Identity();
-  body_pose.linear() = q.normalized().toRotationMatrix();  // r_S at the origin
-  double height = -std::numeric_limits<double>::infinity();
-  for (const Collider& c : scene.colliders) {
-    if (c.body != body) continue;
-    ContactGeometry points[kMaxPairContacts];
-    const int count = Collide(ground, Eigen::Isometry3d::Identity(), c.shape, body_pose * c.pose,
-                              std::numeric_limits<double>::infinity(), points);
-    // gap = height of the lowest point with r_S at z = 0: r_S must be raised by -gap
-    for (int k = 0; k < count; ++k) height = std::max(height, -points[k].gap);
-  }
-  return std::isfinite(height) ? height : fallback;
 }
 
 }  // namespace
@@ -136,4 +117,10 @@ std::vector<BodyState> InitialState(const scene_io::UrdfScene& urdf, int body,
   return state;
 }
 
-}  // namespace nonsmooth_sim::node
+std::vector<BodyState> StartState(const scene_io::UrdfScene& urdf, const StartSpec& start) {
+  std::vector<BodyState> state = InitialState(urdf, start.body, start.conditions);
+  if (!start.bodies.empty()) state = scene_io::ApplyInitialState(urdf.scene, state, start.bodies);
+  return state;
+}
+
+}  // namespace nonsmooth_sim::world
