@@ -117,13 +117,14 @@ ScheduledEvent Event(const YAML::Node& node, const std::string& folder) {
 }  // namespace
 
 std::vector<ScheduledEvent> ParseScheduleYaml(const std::string& text, const std::string& folder) {
-  CheckYamlText(text);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(OneLine(e.what()));
-  }
+  const YAML::Node root = [&] {
+    try {
+      return LoadOneYamlDocument(text);  // bounded: size, nesting, one document (bounded_input.h)
+    } catch (const YamlTextError& e) {
+      throw std::invalid_argument("line " + std::to_string(e.line) + ", column " +
+                                  std::to_string(e.column) + ": " + OneLine(e.what()));
+    }
+  }();
   if (!root.IsMap() || !root["events"] || root.size() != 1) {
     throw std::invalid_argument("expected a map with the one key events (a list of events)");
   }

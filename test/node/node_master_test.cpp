@@ -85,6 +85,8 @@ class StoppedMaster {
 struct Probe {
   std::vector<double> latency;  // [wall s]
   std::vector<double> sim_time;
+  int failed_calls = 0;         // exchanges that failed (a dropped connection: not an answer)
+  double window = 0.0;          // [wall s] how long it probed
   double Median() const {
     std::vector<double> sorted = latency;
     std::sort(sorted.begin(), sorted.end());
@@ -99,19 +101,26 @@ struct Probe {
 Probe ProbeWhile(ros::ServiceClient& client, const std::function<bool()>& done, double timeout) {
   Probe probe;
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+  const ros::WallTime begin = ros::WallTime::now();
   while (!done() && ros::WallTime::now() < end) {
     GetSimulationState srv;
     const ros::WallTime start = ros::WallTime::now();
-    if (!client.call(srv)) break;
-    probe.latency.push_back((ros::WallTime::now() - start).toSec());
-    probe.sim_time.push_back(srv.response.state.sim_time);
+    if (client.call(srv)) {
+      probe.latency.push_back((ros::WallTime::now() - start).toSec());
+      probe.sim_time.push_back(srv.response.state.sim_time);
+    } else {
+      ++probe.failed_calls;
+    }
     ros::WallDuration(0.02).sleep();
   }
+  probe.window = (ros::WallTime::now() - begin).toSec();
   return probe;
 }
 
 void ExpectResponsive(const Probe& probe, const char* during) {
-  ASSERT_GE(probe.latency.size(), 5u) << during << ": ~get_state answered too rarely";
+  ASSERT_GE(probe.latency.size(), 5u)
+      << during << ": ~get_state answered too rarely (" << probe.failed_calls
+      << " failed exchanges in " << probe.window << " s of probing)";
   EXPECT_LT(probe.Median(), kMedianLatency) << during;
   EXPECT_LT(probe.Max(), kLatencyCeiling) << during;
 }

@@ -67,6 +67,16 @@ class SimulateSchedule(unittest.TestCase):
             err = done.stderr.decode().strip().splitlines()
             self.assertEqual(done.returncode, 2, err)
             self.assertIn("unknown key \"forse\"", err[0])
+            # one document: a second one, or a token no document takes, is refused where it is
+            for text, where in (("events: []\n---\nevents: []\n", "line 2, column 1"),
+                                ("{events: []},\n", "line 1, column 13")):
+                with open(schedule, "w") as f:
+                    f.write(text)
+                done = self.run_example(schedule, os.path.join(tmp, "out.csv"))
+                err = done.stderr.decode().strip().splitlines()
+                self.assertEqual(done.returncode, 2, err)
+                self.assertEqual(len(err), 1, err)
+                self.assertIn(where + ": a second YAML document", err[0])
 
 
 if __name__ == "__main__":
