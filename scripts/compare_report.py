@@ -253,9 +253,12 @@ def write_figure(path, scaling_rows, ns, large_rows=(), large_ns=(), duration=No
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--simulate", required=True, help="the simulate binary")
-    p.add_argument("--peers-dir", required=True, help="build directory of bench/peers")
-    p.add_argument("--scenes-dir", required=True, help="where the N-top scenes are")
+    p.add_argument("--simulate", help="the simulate binary (required unless --from-log)")
+    p.add_argument("--peers-dir", help="build directory of bench/peers (required unless --from-log)")
+    p.add_argument("--scenes-dir", help="where the N-top scenes are (required unless --from-log)")
+    p.add_argument("--from-log", metavar="LOG",
+                   help="runs nothing: writes the page and figure again from the runs of LOG (a "
+                        "--log of an earlier run, with the options that run had)")
     p.add_argument("--repetitions", type=int, default=5)
     p.add_argument("--n", type=int, nargs="+", default=[1, 4, 16, 64, 256, 1024],
                    help="(b), the numbers of tops")
@@ -281,12 +284,24 @@ def main():
     p.add_argument("--log", help="write every run as a JSON line here")
     p.add_argument("--command", default="scripts/compare", help="the command, for the doc")
     args = p.parse_args()
-    # the friction sets, from the program (the laws table)
-    known = subprocess.run([args.simulate, "--list-friction-sets"], check=True,
-                           capture_output=True, text=True).stdout.split()
-    for s in args.our_sets:
-        if s not in known:
-            p.error("--our-sets: %r is not one of %s" % (s, ", ".join(known)))
+    meta = None
+    if args.from_log:
+        with open(args.from_log) as f:
+            meta = json.loads(f.readline())
+        if meta.get("table") != "meta":
+            p.error(f"--from-log: {args.from_log} has no meta line (written by an older version)")
+        for k, v in meta["args"].items():  # the options of the run, except the outputs
+            if k not in ("doc", "figure", "from_log", "log"):
+                setattr(args, k, v)
+    elif not (args.simulate and args.peers_dir and args.scenes_dir):
+        p.error("--simulate, --peers-dir and --scenes-dir are required (or --from-log)")
+    else:
+        # the friction sets, from the program (the laws table)
+        known = subprocess.run([args.simulate, "--list-friction-sets"], check=True,
+                               capture_output=True, text=True).stdout.split()
+        for s in args.our_sets:
+            if s not in known:
+                p.error("--our-sets: %r is not one of %s" % (s, ", ".join(known)))
     if args.repetitions < 1:
         p.error("--repetitions must be >= 1")
     if args.crowd_only:
@@ -295,7 +310,10 @@ def main():
         p.error("--n must be >= 1 and --crowd-n >= 2")
     tables = set(args.only)
 
-    engines = [e for e in args.engines if os.access(peer_binary(args.peers_dir, e), os.X_OK)]
+    if meta:
+        engines = meta["engines"]
+    else:
+        engines = [e for e in args.engines if os.access(peer_binary(args.peers_dir, e), os.X_OK)]
     missing = [e for e in args.engines if e not in engines]
     for e in missing:
         print(f"compare: {peer_binary(args.peers_dir, e)} not built, {e} skipped", file=sys.stderr)
@@ -318,8 +336,9 @@ def main():
         scaling = [Cfg(e, s, n, d, "tops") for e, s in SCALING if e in active for n, d in scaling_points]
     if "crowd" in tables:
         crowd = [Cfg(e, s, args.crowd_n, args.crowd_duration, "crowd") for e, s in SCALING if e in active]
-    write_scenes(args, sorted({n for n, _ in scaling_points}) if scaling else [],
-                 args.crowd_n if crowd else None)
+    if not meta:
+        write_scenes(args, sorted({n for n, _ in scaling_points}) if scaling else [],
+                     args.crowd_n if crowd else None)
     configs = single + scaling + crowd
 
     def is_large(cfg):  # a run at the large-N duration (the largest N and its N = 1 reference)
@@ -329,9 +348,35 @@ def main():
     our_touches = None
     start = datetime.datetime.now()
     load_start = loadavg()
-    log = open(args.log, "w") if args.log else None
+    code = git_describe()
+    log = open(args.log, "w") if args.log and not meta else None
+    if log:
+        log.write(json.dumps({"table": "meta", "start": start.isoformat(), "load_start": load_start,
+                              "code": code, "cores": os.cpu_count(), "cpu_model": cpu_model(),
+                              "engines": engines, "args": vars(args)}) + "\n")
+    if meta:
+        start = datetime.datetime.fromisoformat(meta["start"])
+        load_start, code = meta["load_start"], meta["code"]
+        with open(args.from_log) as f:
+            for line in f:
+                r = json.loads(line)
+                table = r.pop("table")
+                if table == "meta":
+                    continue
+                if table == "end":
+                    minutes, load_end = r["minutes"], r["load_end"]
+                elif table == "crowd_touches":
+                    our_touches = {k: v for k, v in r.items()
+                                   if k not in ("engine", "n", "duration")}
+                else:
+                    cfg = Cfg(r.pop("engine"), r.pop("setting"),
+                              None if table == "single" else r["n"], r.pop("duration"), table)
+                    r.pop("round")
+                    r.pop("n")
+                    if cfg in results:
+                        results[cfg].append(r)
     with tempfile.TemporaryDirectory() as tmp:
-        for rep in range(args.repetitions):
+        for rep in range(0 if meta else args.repetitions):
             # round-robin; each round starts one configuration later, so that no configuration
             # always runs right after the same neighbour
             order = configs[rep % len(configs):] + configs[:rep % len(configs)]
@@ -344,24 +389,25 @@ def main():
                 r = run(cfg, args, tmp)
                 results[cfg].append(r)
                 if log:
-                    logged = {k: v for k, v in r.items() if k != "final_bodies"}
                     log.write(json.dumps({"round": rep, "engine": cfg.engine, "setting": cfg.setting,
                                           "n": cfg.n or 1, "duration": cfg.duration,
-                                          "table": cfg.table, **logged}) + "\n")
+                                          "table": cfg.table, **r}) + "\n")
                     log.flush()
         ours_crowd = [c for c in crowd if c.engine == "ours"]
-        if ours_crowd:
+        if ours_crowd and not meta:
             print("\rcompare: ours' crowd once more, untimed, every step into a CSV for its touches"
                   + " " * 30, end="", file=sys.stderr, flush=True)
             our_touches = our_crowd_contacts(ours_crowd[0], args, tmp)
             if log:
                 log.write(json.dumps({"engine": "ours", "table": "crowd_touches", "n": args.crowd_n,
                                       "duration": args.crowd_duration,
-                                      **{k: v for k, v in our_touches.items() if k != "final_bodies"}})
-                          + "\n")
+                                      **our_touches}) + "\n")
     print(file=sys.stderr)
-    minutes = (datetime.datetime.now() - start).total_seconds() / 60.0
-    load_end = loadavg()
+    if not meta:
+        minutes = (datetime.datetime.now() - start).total_seconds() / 60.0
+        load_end = loadavg()
+        if log:
+            log.write(json.dumps({"table": "end", "minutes": minutes, "load_end": load_end}) + "\n")
 
     def median_cpu(cfg):
         return statistics.median(r["cpu_s"] for r in results[cfg])
@@ -382,9 +428,10 @@ def main():
     w("")
     w(f"    {args.command}")
     w("")
-    w(f"on this repository's machine: {os.cpu_count()} cores ({cpu_model()}), shared with other "
+    cores, model = (meta["cores"], meta["cpu_model"]) if meta else (os.cpu_count(), cpu_model())
+    w(f"on this repository's machine: {cores} cores ({model}), shared with other "
       f"jobs (load average {load_start} at the start, {load_end} at the end; the runs took "
-      f"{minutes:.1f} min). Code: {git_describe()}. Engines: Debian 12's packages, "
+      f"{minutes:.1f} min). Code: {code}. Engines: Debian 12's packages, "
       f"ODE {version_of('ode', results)} (double precision), MuJoCo "
       f"{version_of('mujoco', results)}, Bullet {version_of('bullet', results)}; ours is "
       "`simulate`, Release (`-O3`, no `-march=native`), the peers are built with the same flags "
@@ -657,7 +704,7 @@ def main():
         if large_ns and "ours" in costs_of:
             big = max(large_ns)
             ratio = costs_of["ours"][(big, args.large_n_duration)] / costs_of["ours"][(1, args.large_n_duration)]
-            w(f"Issue 12's goal, ours at N = {big} within 1.5× of N = 1 per body-step (a benchmark, "
+            w(f"The scaling goal, ours at N = {big} within 1.5× of N = 1 per body-step (a benchmark, "
               f"not a test): {ratio:.2f}× at {args.large_n_duration:g} s"
               + (f" ({costs_of['ours'][(big, args.large_n_duration)] / costs_of['ours'][(1, args.scaling_duration)]:.2f}× "
                  f"the {args.scaling_duration:g} s run of N = 1)" if (1, args.scaling_duration) in costs_of["ours"] else "")
