@@ -527,13 +527,17 @@ def reproducing(st, w):
     w("    scripts/compare --crowd-only --crowd-duration 8   # the crowd alone; both into")
     w("                                          # build-peers/compare_partial.md, not here")
     w("    scripts/compare --repetitions 3 --n 1 16 256 --scaling-duration 1")
+    w("    scripts/compare --from-log build-peers/compare_runs.jsonl   # no runs: this page again")
+    w("                                          # from the runs the last full call logged")
     w("")
     w("`scripts/compare` installs `libode-dev`, `libmujoco-dev` and `libbullet-dev` with apt if "
       "missing, builds `bench/peers` (its own CMake project, not part of the package) into "
       "`build-peers/` (or `$PEERS_BUILD_DIR`), builds `simulate` if it is missing or older than "
       "the sources (the target alone, `-j1`, in the build directory of `scripts/build`, or "
-      "`$BUILD_DIR`) and runs `scripts/compare_report.py`, which writes the N-top and crowd scenes "
-      "into the peers' build directory (`scenes/`), this page and the figure "
+      "`$BUILD_DIR`) and runs `scripts/compare_report.py` (its parts in `scripts/peer_compare/`: "
+      "`run.py`, `analyse.py`, `report.py`), which writes the N-top and crowd scenes into the "
+      "peers' build directory (`scenes/`), every run into `build-peers/compare_runs.jsonl`, this "
+      "page and the figure "
       "(`scripts/compare --help` lists the options: `--only`, `--large-n`, `--large-n-duration`, "
       "`--large-n-repetitions`, `--crowd-n`, `--crowd-duration`, …). One peer run by hand: "
       "`build-peers/mujoco_tops --setting elliptic --n 1 --duration 8` prints one JSON line "
