@@ -12,8 +12,8 @@
 // cylinder C_F, with a box for a disc).
 //
 // Collision: one top (the single-top scene) has exactly two pairs, each sphere with the plane, so
-// they are collided directly (dCollide); N tops and the crowd use a hash space (dSpaceCollide),
-// the broad phase a user needs once the pairs are not known in advance.
+// they are collided directly (dCollide); N tops and the crowd use a sweep-and-prune space
+// (dSpaceCollide), the broad phase a user needs once the pairs are not known in advance.
 //
 // Settings (--setting): world_step (dWorldStep, the pivoting LCP solver, the default) or
 // quick_step (dWorldQuickStep, 20 SOR iterations, ODE's default count). World ERP 0.2 and CFM
@@ -79,9 +79,10 @@ int main(int argc, char** argv) {
   dWorldSetCFM(w.world, 1e-10);
   dWorldSetQuickStepNumIterations(w.world, 20);
   dWorldSetAutoDisableFlag(w.world, 0);
-  // a hash space: cells from 2^-7 m (below the peg) to 2^-3 m
-  w.space = dHashSpaceCreate(nullptr);
-  dHashSpaceSetLevels(w.space, -7, -3);
+  // sweep and prune on all three axes: ODE's broad phase without parameters, and its fastest here
+  // (N = 16, 256 and the crowd: 1.6-1.8x less CPU than a hash space with cells 2^-7 to 2^-3 m,
+  // the same printed results; a simple space is O(N^2))
+  w.space = dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ);
   w.contacts = dJointGroupCreate(0);
   dGeomID ground = dCreatePlane(w.space, 0, 0, 1, 0);
   if (args.crowd())  // planes a x + b y + c z = d, (a, b, c) towards the free side
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
   const std::string settings =
       std::string(quick ? "dWorldQuickStep 20 iter" : "dWorldStep (LCP)") +
       ", Approx1 box friction mu 0.3, drilling rhoN = mu*Rbar (box, decoupled), no rolling rows, " +
-      (direct ? "pairs collided directly" : "hash space") + ", ERP 0.2, CFM 1e-10";
+      (direct ? "pairs collided directly" : "sweep-and-prune space") + ", ERP 0.2, CFM 1e-10";
   PrintResult("ode", "0.16.2", settings, args, steps, cpu, monitors, initial, final_state,
               args.crowd() ? pairs.Json() : "");
   dJointGroupDestroy(w.contacts);

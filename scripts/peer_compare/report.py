@@ -252,8 +252,10 @@ def settings(st, w):
       "the same contact law; θ(t), the event times and the energies print the same as with the "
       "zero rows (the LCP's size changes its rounding only: θ differs by at most 3e-13 rad over "
       "8 s). One top has exactly two pairs, each sphere with the plane: they are collided "
-      "directly (`dCollide`), as a user would for this scene; N tops and the crowd use a hash "
-      "space, their broad phase.")
+      "directly (`dCollide`), as a user would for this scene; N tops and the crowd use a "
+      "sweep-and-prune space (`dSweepAndPruneSpaceCreate`, all three axes), their broad phase and "
+      "ODE's fastest here (1.6–1.8× less CPU than a hash space at N = 16, 256 and in the crowd, "
+      "with the same printed results).")
     w("- **MuJoCo**: condim 4 (normal, two tangents, torsion; 6 would add rolling resistance), "
       "the elliptic cone (the ellipsoid E_F; the pyramidal cone is a different, octahedral law), "
       "the Euler integrator (its cheapest), default `solref`/`solimp`. Newton (the default) and "
