@@ -22,3 +22,6 @@ install(DIRECTORY launch urdf config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINAT
 # PYTHON_EXECUTABLE (default /usr/bin/python3; cmake -DPYTHON_EXECUTABLE=... to change)
 catkin_install_python(PROGRAMS scripts/scene_report.py scripts/tradeoff_report.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# tradeoff_report.py's modules, next to it
+install(DIRECTORY scripts/tradeoff_study DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
+  FILES_MATCHING PATTERN "*.py")
