@@ -27,13 +27,6 @@ namespace {
 const std::string kTippeTopUrdf = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf";
 constexpr std::size_t kMaxUrdfBytes = std::size_t{16} << 20;  // ~max_urdf_bytes' default
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 const std::string kInertial =
     "<inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" "
     "iyz=\"0\" izz=\"0.01\"/></inertial>";

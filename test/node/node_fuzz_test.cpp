@@ -18,11 +18,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <random>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -117,7 +115,9 @@ void RandomRequest(Fuzzer& f, ros::NodeHandle& nh, const std::string& urdf) {
   const std::vector<std::string> sets = {"coulomb", "cylinder", "ellipsoid", "sphere", "exact"};
   const std::vector<std::string> solvers = {"jacobi", "modified_jacobi", "gauss_seidel"};
 switch (f.Pick(12)) {
-    case 0: CallTimed(nh, f.Pick(2) ? "pause_physics" : "unpause_physics", std_srvs::Empty()); break;
+    case 0:
+      CallTimed(nh, f.Pick(2) ? "pause_physics" : "unpause_physics", std_srvs::Empty());
+      break;
     case 1: {
       StepSimulation s;
       static const std::uint32_t kSteps[] = {0, 1, 7, 100, 1000, 100001, 4294967295u};
@@ -165,7 +165,10 @@ switch (f.Pick(12)) {
       SetModelState s;
       s.request.model_state.model_name = f.Pick(4) ? "tippe_top" : "nope";
       const auto p = f.Numbers(3), q = f.Numbers(4), v = f.Numbers(3), w = f.Numbers(3);
-      if (p.size() == 3) s.request.model_state.pose.position.x = p[0], s.request.model_state.pose.position.z = std::abs(p[2]);
+      if (p.size() == 3) {
+        s.request.model_state.pose.position.x = p[0];
+        s.request.model_state.pose.position.z = std::abs(p[2]);
+      }
       if (q.size() == 4) {
         s.request.model_state.pose.orientation.x = q[0];
         s.request.model_state.pose.orientation.w = q[3];
@@ -224,19 +227,13 @@ std::size_t FromEnvironment(const char* name, std::size_t fallback) {
   return value == nullptr ? fallback : std::stoul(value);
 }
 
-std::string ReadTextFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 TEST(NodeFuzz, EveryRequestIsAnsweredAndTheNodeStaysSound) {
   ros::NodeHandle nh;
   Recorder<rosgraph_msgs::Clock> clock(nh, "/clock");
   const std::size_t requests = FromEnvironment("NONSMOOTH_SIM_HAMMER_REQUESTS", 2000);
   const double seconds = FromEnvironment("NONSMOOTH_SIM_HAMMER_SECONDS", 120);
-  const std::string urdf = ReadTextFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf");
+  const std::string urdf =
+      ReadFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf");
   ASSERT_FALSE(urdf.empty());
   const auto start = std::chrono::steady_clock::now();
   std::atomic<std::size_t> sent{0};

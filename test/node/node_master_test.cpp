@@ -35,13 +35,6 @@ constexpr double kMedianLatency = 0.1;   // [s] ~get_state while the master is s
 constexpr double kLatencyCeiling = 1.0;  // [s] each call (generous: sanitizer builds)
 constexpr int kExtraTops = 8;            // spawned before the step calls
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The master's process id (master API getPid).
 int MasterPid() {
   XmlRpc::XmlRpcValue request, response, payload;

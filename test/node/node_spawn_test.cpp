@@ -39,13 +39,6 @@ constexpr double kInverted = 2.9;  // θ > 2.9 rad: spinning on the peg
 constexpr double kOffset = 0.5;    // the second top's distance from the first [m]
 const std::string kTippeTopUrdf = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf";
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 class Spawn : public testing::Test {
  protected:
   SimulationState State() {

@@ -46,7 +46,7 @@ std::string DescribeBytes(std::size_t bytes);
 /// quoted scalars and comments are skipped.
 void CheckYamlText(std::string_view text, std::size_t max_bytes = kMaxInputBytes);
 
-/// A refused YAML text: the reason and where (1-based line and column; 0 when it is the whole text).
+/// A refused YAML text: the reason and where (1-based line and column).
 struct YamlTextError : std::invalid_argument {
   YamlTextError(int line, int column, const std::string& reason)
       : std::invalid_argument(reason), line(line), column(column) {}
