@@ -101,6 +101,20 @@ void FirstContacts(const Simulator& sim, std::vector<int>* first) {
   }
 }
 
+geometry_msgs::Pose ToMsg(const world::Pose& pose) {
+  geometry_msgs::Pose msg;
+  Set(pose.position, &msg.position);
+  Set(pose.orientation, &msg.orientation);
+  return msg;
+}
+
+geometry_msgs::Twist ToMsg(const world::Twist& twist) {
+  geometry_msgs::Twist msg;
+  Set(twist.linear, &msg.linear);
+  Set(twist.angular, &msg.angular);
+  return msg;
+}
+
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state) {
   geometry_msgs::Pose pose;
   Set(Eigen::Vector3d(state.position - state.orientation * body.com_in_link), &pose.position);

@@ -63,19 +63,8 @@ bool SimulationNode::OnGetModelState(GetModelState::Request& req, GetModelState:
     res.status_message = e.what();
     return true;
   }
-  res.pose.position.x = f.pose.position.x();
-  res.pose.position.y = f.pose.position.y();
-  res.pose.position.z = f.pose.position.z();
-  res.pose.orientation.x = f.pose.orientation.x();
-  res.pose.orientation.y = f.pose.orientation.y();
-  res.pose.orientation.z = f.pose.orientation.z();
-  res.pose.orientation.w = f.pose.orientation.w();
-  res.twist.linear.x = f.twist.linear.x();
-  res.twist.linear.y = f.twist.linear.y();
-  res.twist.linear.z = f.twist.linear.z();
-  res.twist.angular.x = f.twist.angular.x();
-  res.twist.angular.y = f.twist.angular.y();
-  res.twist.angular.z = f.twist.angular.z();
+  res.pose = ToMsg(f.pose);
+  res.twist = ToMsg(f.twist);
   res.success = true;
   res.status_message = "pose and twist of " + world_->BodyName(f.body);
   return true;

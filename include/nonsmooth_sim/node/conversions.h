@@ -4,6 +4,7 @@
 #define NONSMOOTH_SIM_NODE_CONVERSIONS_H_
 
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Twist.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
 #include <tf2_msgs/TFMessage.h>
@@ -16,6 +17,7 @@
 #include "nonsmooth_sim/SimulationState.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/world/names.h"
+#include "nonsmooth_sim/world/placement.h"
 
 namespace nonsmooth_sim::node {
 
@@ -36,6 +38,10 @@ const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, 
 /// Per collider the index in sim.contacts() of its first contact, -1 without one: one pass over
 /// the contacts, so that a message over every slot costs O(contacts + colliders).
 void FirstContacts(const Simulator& sim, std::vector<int>* first);
+
+/// A pose and a twist of the world as messages (~get_model_state).
+geometry_msgs::Pose ToMsg(const world::Pose& pose);
+geometry_msgs::Twist ToMsg(const world::Twist& twist);
 
 /// Pose of the link frame: the body pose composed with the translation -com_in_link.
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state);
