@@ -8,11 +8,14 @@
 // robot_description set under the model's namespace shows a spawned model).
 //
 // Locks: the world changes under the simulator mutex; the master calls (the namespace checks,
-// setting or deleting the robot_description, advertising and unadvertising ~wrench/ topics) are
-// made without it, under world_mutex_, which serialises spawns and deletes. A slot of a spawned
-// collision publishes from when its topic is advertised.
+// setting or deleting the robot_description, advertising ~wrench/ topics) are made without it,
+// under world_mutex_, which serialises spawns and deletes. A slot of a spawned collision
+// publishes from when its topic is advertised. A deleted collision's topic is not unadvertised
+// but kept for the next collision of that name (simulation_node.h, kept_wrench_pubs_): roscpp
+// unregisters a topic with the master while holding the lock every publish takes.
 #include <ros/names.h>
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -139,14 +142,14 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
   lock.unlock();
   // the master, without the simulator mutex (as in OnSpawnUrdfModel)
   if (!description.empty()) nh_.deleteParam(description);
-  AdvertiseWrenches(&topics);  // the removed topics unadvertised
+  AdvertiseWrenches(&topics);  // the removed topics kept (beyond the bound: unadvertised)
   return true;
 }
 
 SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
-  // wrench topics: kept for the collisions that stay; a new one gets no publisher until
-  // AdvertiseWrenches (outside the mutex) installs it; a removed one gets a zero wrench (rviz
-  // clears its arrow) and is unadvertised when AdvertiseWrenches drops the last copy
+  // wrench topics: kept for the collisions that stay; a new one takes the kept publisher of its
+  // topic or gets none until AdvertiseWrenches (outside the mutex) installs it; a removed one
+  // gets a zero wrench (rviz clears its arrow) and is kept, beyond the bound the oldest dropped
   std::map<std::string, ros::Publisher> previous;
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
     if (wrench_pubs_[i]) previous[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
@@ -157,22 +160,36 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
   std::vector<ros::Publisher> publishers;
   for (std::size_t slot = 0; slot < frames_.slots.size(); ++slot) {
     const std::string topic = WrenchTopic(slot);
-    const auto found = previous.find(private_nh_.resolveName(topic));
+    const std::string resolved = private_nh_.resolveName(topic);
+    const auto found = previous.find(resolved);
+    const auto kept = kept_wrench_pubs_.find(resolved);
     if (found != previous.end()) {
       publishers.push_back(found->second);
       previous.erase(found);
+    } else if (kept != kept_wrench_pubs_.end()) {
+      publishers.push_back(kept->second);
+      kept_wrench_pubs_.erase(kept);
+      kept_wrench_order_.erase(
+          std::find(kept_wrench_order_.begin(), kept_wrench_order_.end(), resolved));
     } else {
       publishers.emplace_back();
       topics.to_advertise.push_back(topic);
     }
   }
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    if (!wrench_pubs_[i] || previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // kept
+    if (!wrench_pubs_[i] || previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // stays
     geometry_msgs::WrenchStamped zero;
     zero.header.stamp = StampOf(world_->sim().time());
     zero.header.frame_id = old_frames.contacts[i];
     wrench_pubs_[i].publish(zero);
-    topics.retired.push_back(wrench_pubs_[i]);
+    kept_wrench_pubs_[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
+    kept_wrench_order_.push_back(wrench_pubs_[i].getTopic());
+  }
+  while (kept_wrench_order_.size() > kMaxKeptWrenchTopics) {
+    const auto oldest = kept_wrench_pubs_.find(kept_wrench_order_.front());
+    topics.dropped.push_back(oldest->second);
+    kept_wrench_pubs_.erase(oldest);
+    kept_wrench_order_.pop_front();
   }
   wrench_pubs_.swap(publishers);
   wrench_closed_.assign(frames_.slots.size(), false);
@@ -201,7 +218,7 @@ void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {
       if (found != advertised.end()) wrench_pubs_[slot] = found->second;
     }
   }
-  topics->retired.clear();  // the last copies of the removed topics: unadvertised here
+  topics->dropped.clear();  // the last copies of the oldest kept topics: unadvertised here
 }
 
 }  // namespace nonsmooth_sim::node

@@ -20,8 +20,11 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -151,14 +154,16 @@ class SimulationNode {
   /// What a change of the world leaves for the master (AdvertiseWrenches, without the mutex).
   struct WrenchTopics {
     std::vector<std::string> to_advertise;  ///< ~wrench/ topics of new slots (relative names)
-    std::vector<ros::Publisher> retired;    ///< of removed slots: their last copies
+    std::vector<ros::Publisher> dropped;    ///< kept ones beyond the bound: their last copies
   };
   /// After bodies or colliders were added or removed: the contact frames and wrench topics of the
-  /// world, the markers cleared (mutex held). New slots have no publisher yet.
+  /// world, the markers cleared (simulator mutex and world_mutex_ held). A new slot takes a kept
+  /// publisher of its topic if there is one, else it has none until AdvertiseWrenches; a removed
+  /// slot's publisher sends a zero wrench and is kept (kept_wrench_pubs_).
   WrenchTopics WorldChanged();
   /// Advertises the new topics and installs them in their slots (takes the mutex for that only),
-  /// then drops the retired publishers (unadvertised): the master calls of a spawn or delete,
-  /// made without the simulator mutex. Call with world_mutex_ held.
+  /// then drops the publishers kept beyond the bound (unadvertised): the master calls of a spawn
+  /// or delete, made without the simulator mutex. Call with world_mutex_ held.
   void AdvertiseWrenches(WrenchTopics* topics);
   std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
   // --- diagnostics (spinner thread)
@@ -181,6 +186,15 @@ class SimulationNode {
   /// Serialises ~spawn_urdf_model and ~delete_model, held across their master calls (taken
   /// before mutex_, never while holding it).
   std::mutex world_mutex_;
+  /// ~wrench/ publishers of removed collisions (resolved topic → publisher, and the topics oldest
+  /// first), under world_mutex_. They stay advertised, silent, and serve the next collision with
+  /// that topic: unadvertising calls the master while roscpp holds the lock that every publish
+  /// and getNumSubscribers of the integrator takes, so a slow or stopped master would stall the
+  /// stepping (under the simulator mutex) and with it every service. Beyond
+  /// kMaxKeptWrenchTopics the oldest is unadvertised (AdvertiseWrenches).
+  std::map<std::string, ros::Publisher> kept_wrench_pubs_;
+  std::deque<std::string> kept_wrench_order_;
+  static constexpr std::size_t kMaxKeptWrenchTopics = 1024;
   std::condition_variable wake_;
   std::atomic<int> waiting_services_{0};
   bool stop_ = false;
