@@ -10,7 +10,8 @@ add_library(nonsmooth_sim_ros STATIC
   src/node/node_services.cpp
   src/node/simulation_node.cpp
   src/node/world_services.cpp
-  src/node/model_services.cpp)
+  src/node/model_services.cpp
+  src/node/master_calls.cpp)
 # the message headers (<build>/devel/include) and catkin's come from include_directories() in
 # cmake/catkin.cmake
 target_include_directories(nonsmooth_sim_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
@@ -44,9 +45,10 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(tf2_ros REQUIRED)
 
-  # URDF conversion, initial conditions and message conversion: no master needed.
+  # URDF conversion, initial conditions, message conversion and the master calls' queue: no
+  # master needed.
   add_executable(node_conversion_test EXCLUDE_FROM_ALL
-    test/node/conversions_test.cpp)
+    test/node/conversions_test.cpp test/node/master_calls_test.cpp)
   target_link_libraries(node_conversion_test PRIVATE nonsmooth_sim_ros GTest::gtest GTest::gtest_main)
   target_compile_definitions(node_conversion_test PRIVATE
     NONSMOOTH_SIM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -87,7 +89,7 @@ if(CATKIN_ENABLE_TESTING)
     TIMEOUT 1500)
   # two 100 000-step calls one after the other: minutes under the sanitizers
   set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_master_test.test PROPERTIES
-    TIMEOUT 240)
+    TIMEOUT 300)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

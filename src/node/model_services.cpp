@@ -8,17 +8,23 @@
 // robot_description set under the model's namespace shows a spawned model).
 //
 // Locks: the world changes under the simulator mutex; the master calls (the namespace checks,
-// setting or deleting the robot_description, advertising ~wrench/ topics) are made without it,
-// under world_mutex_, which serialises spawns and deletes. A slot of a spawned collision
+// setting or deleting the robot_description, advertising ~wrench/ topics) are made without it, on
+// master_calls_ (in order, on their own thread), waited for at most kMasterTimeout under
+// world_mutex_, which serialises spawns and deletes. A master that does not answer in time: the
+// namespace check refuses the spawn (nothing changed); after the world changed, the reply says
+// that the parameter and topics follow when the master answers. A slot of a spawned collision
 // publishes from when its topic is advertised. A deleted collision's topic is not unadvertised
 // but kept for the next collision of that name (simulation_node.h, kept_wrench_pubs_): roscpp
 // unregisters a topic with the master while holding the lock every publish takes.
 #include <ros/names.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nonsmooth_sim/node/simulation_node.h"
@@ -26,6 +32,13 @@
 #include "request_fields.h"
 
 namespace nonsmooth_sim::node {
+namespace {
+
+std::string InSeconds(std::chrono::milliseconds duration) {
+  return std::to_string(duration.count() / 1000) + " s";
+}
+
+}  // namespace
 
 // The parameter namespace of a spawned model's URDF (robot_namespace, empty: the model's name): it
 // must resolve to the model's own namespace or one under it, so that no model reaches "/", a
@@ -79,7 +92,15 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
               " bytes, more than the bound ~max_urdf_bytes = " +
               scene_io::DescribeBytes(parameters_.scene.max_bytes) + " (refused before parsing)");
     scene_io::CheckNameLength("robot_namespace", req.robot_namespace);
-    description = ModelNamespace(req.model_name, req.robot_namespace);
+    auto checked = std::make_shared<std::string>();
+    const bool answered = master_calls_.Run(
+        [this, checked, model = req.model_name, ns = req.robot_namespace] {
+          *checked = ModelNamespace(model, ns);
+        },
+        kMasterTimeout);
+    Check(answered, "the master did not answer within " + InSeconds(kMasterTimeout) +
+                        " (checking robot_namespace)");
+    description = *checked;
     UrdfSceneOptions options = parameters_.scene;  // the node's ~gravity, ~mu, ~friction_set, ...
     options.ground = false;                        // the world has its ground already
     urdf = SceneFromUrdf(req.model_xml, options);  // one-line reasons, as at start-up
@@ -112,8 +133,16 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
   lock.unlock();
   // the master, without the simulator mutex: the simulation steps on and the other services
   // answer while it is slow or stopped
-  nh_.setParam(description, req.model_xml);
-  AdvertiseWrenches(&topics);
+  const bool answered = master_calls_.Run(
+      [this, description, xml = req.model_xml, topics = std::move(topics)]() mutable {
+        nh_.setParam(description, xml);
+        AdvertiseWrenches(&topics);
+      },
+      kMasterTimeout);
+  if (!answered) {
+    res.status_message += "; the master did not answer within " + InSeconds(kMasterTimeout) + ": " +
+                          description + " and the ~wrench/ topics are set when it does";
+  }
   for (const std::string& warning : warnings) {
     ROS_WARN_STREAM("nonsmooth_sim: spawn " << name << ": " << warning);
   }
@@ -141,8 +170,17 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
                        " collisions) at t = " + std::to_string(world_->sim().time()) + " s";
   lock.unlock();
   // the master, without the simulator mutex (as in OnSpawnUrdfModel)
-  if (!description.empty()) nh_.deleteParam(description);
-  AdvertiseWrenches(&topics);  // the removed topics kept (beyond the bound: unadvertised)
+  const bool answered = master_calls_.Run(
+      [this, description, topics = std::move(topics)]() mutable {
+        if (!description.empty()) nh_.deleteParam(description);
+        AdvertiseWrenches(&topics);  // the removed topics kept (beyond the bound: unadvertised)
+      },
+      kMasterTimeout);
+  if (!answered) {
+    res.status_message += "; the master did not answer within " + InSeconds(kMasterTimeout) +
+                          (description.empty() ? std::string()
+                                               : ": " + description + " is deleted when it does");
+  }
   return true;
 }
 
@@ -182,14 +220,7 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
     zero.header.stamp = StampOf(world_->sim().time());
     zero.header.frame_id = old_frames.contacts[i];
     wrench_pubs_[i].publish(zero);
-    kept_wrench_pubs_[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
-    kept_wrench_order_.push_back(wrench_pubs_[i].getTopic());
-  }
-  while (kept_wrench_order_.size() > kMaxKeptWrenchTopics) {
-    const auto oldest = kept_wrench_pubs_.find(kept_wrench_order_.front());
-    topics.dropped.push_back(oldest->second);
-    kept_wrench_pubs_.erase(oldest);
-    kept_wrench_order_.pop_front();
+    KeepWrenchPublisher(wrench_pubs_[i], &topics.dropped);
   }
   wrench_pubs_.swap(publishers);
   wrench_closed_.assign(frames_.slots.size(), false);
@@ -198,6 +229,18 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
   markers_pub_.publish(DeleteAllMarkers(frames_.world));
   markers_count_ = 0;
   return topics;
+}
+
+void SimulationNode::KeepWrenchPublisher(const ros::Publisher& publisher,
+                                         std::vector<ros::Publisher>* dropped) {
+  kept_wrench_pubs_[publisher.getTopic()] = publisher;
+  kept_wrench_order_.push_back(publisher.getTopic());
+  while (kept_wrench_order_.size() > kMaxKeptWrenchTopics) {
+    const auto oldest = kept_wrench_pubs_.find(kept_wrench_order_.front());
+    dropped->push_back(oldest->second);
+    kept_wrench_pubs_.erase(oldest);
+    kept_wrench_order_.pop_front();
+  }
 }
 
 std::string SimulationNode::WrenchTopic(std::size_t slot) const {
@@ -215,7 +258,13 @@ void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {
     for (std::size_t slot = 0; slot < wrench_pubs_.size(); ++slot) {
       if (wrench_pubs_[slot]) continue;
       const auto found = advertised.find(private_nh_.resolveName(WrenchTopic(slot)));
-      if (found != advertised.end()) wrench_pubs_[slot] = found->second;
+      if (found == advertised.end()) continue;
+      wrench_pubs_[slot] = found->second;
+      advertised.erase(found);
+    }
+    // slots removed since (a delete after a spawn whose master calls were late): kept
+    for (const auto& [topic, publisher] : advertised) {
+      KeepWrenchPublisher(publisher, &topics->dropped);
     }
   }
   topics->dropped.clear();  // the last copies of the oldest kept topics: unadvertised here

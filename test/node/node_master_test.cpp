@@ -4,6 +4,9 @@
 //   connection, at least 5 times, median latency under 100 ms (each under 1 s: the sanitizer
 //   builds are several times slower); the spawn and the delete complete once the master continues.
 //   Before, both held the simulator mutex across their master calls: 0 steps and no answer.
+// - the master stopped for 12 s: a delete replies after 5 s (made, its parameter deleted when the
+//   master answers), a spawn after 5 more (refused: its namespace check needs the master), the
+//   world as the replies say. Before, both waited for the master for as long as it was stopped.
 // - two concurrent 100 000-step ~step calls (paused, nine tops: seconds each): ~get_state answers
 //   at least 5 times while both are outstanding, median under 100 ms. Before, each took one of
 //   the spinner's two threads and ~get_state waited for a step call to end.
@@ -22,6 +25,7 @@
 
 #include "nonsmooth_sim/DeleteModel.h"
 #include "nonsmooth_sim/GetSimulationState.h"
+#include "nonsmooth_sim/GetWorldProperties.h"
 #include "nonsmooth_sim/SpawnModel.h"
 #include "nonsmooth_sim/StepSimulation.h"
 #include "ros_test_helpers.h"
@@ -66,6 +70,7 @@ class StoppedMaster {
     if (!continued_.exchange(true) && stopped_) kill(pid_, SIGCONT);
   }
   bool stopped() const { return stopped_; }
+  bool continued() const { return continued_; }  ///< by Continue() or the watchdog
 
  private:
   int pid_;
@@ -185,6 +190,64 @@ TEST_F(Master, SpawnAndDeleteWithTheMasterStoppedNeitherFreezeNorStarveTheNode) 
   }
   std::string description;
   EXPECT_FALSE(nh_.getParam("/top2/robot_description", description)) << "deleted with the model";
+}
+
+// A master stopped for longer than the node waits for it (5 s, docs/ros.md "Bounds"): the delete
+// is made and says that its parameter goes when the master answers; a spawn, whose namespace
+// check needs the master before anything changes, is refused and changes nothing. Both reply
+// while the master is still stopped; once it continues, the parameter is gone.
+TEST_F(Master, AMasterThatDoesNotAnswerInTimeIsReportedAndLeavesTheWorldConsistent) {
+  const int pid = MasterPid();
+  ASSERT_GT(pid, 0);
+  ros::ServiceClient spawn = nh_.serviceClient<SpawnModel>(kNode + "spawn_urdf_model", true);
+  ros::ServiceClient remove = nh_.serviceClient<DeleteModel>(kNode + "delete_model", true);
+  ros::ServiceClient world =
+      nh_.serviceClient<GetWorldProperties>(kNode + "get_world_properties", true);
+  SpawnModel spawned;
+  spawned.request.model_name = "late";
+  spawned.request.model_xml =
+      ReadFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf");
+  spawned.request.initial_pose.position.x = -0.5;
+  spawned.request.initial_pose.orientation.w = 1.0;
+  ASSERT_TRUE(spawn.call(spawned));
+  ASSERT_TRUE(spawned.response.success) << spawned.response.status_message;
+  std::string description;
+  ASSERT_TRUE(nh_.getParam("/late/robot_description", description));
+  GetWorldProperties before;
+  ASSERT_TRUE(world.call(before));
+
+  DeleteModel deleted;
+  deleted.request.model_name = "late";
+  SpawnModel refused = spawned;
+  refused.request.model_name = "late2";
+  GetWorldProperties during;
+  {
+    // the delete waits 5 s, the spawn's check 5 s behind it: 12 s leaves room for slow builds
+    StoppedMaster master(pid, 12.0);
+    ASSERT_TRUE(master.stopped());
+    ASSERT_TRUE(remove.call(deleted));
+    ASSERT_TRUE(spawn.call(refused));
+    ASSERT_TRUE(world.call(during));
+    EXPECT_FALSE(master.continued()) << "the replies came only after the master continued";
+  }
+  EXPECT_TRUE(deleted.response.success) << deleted.response.status_message;
+  EXPECT_NE(deleted.response.status_message.find(
+                "the master did not answer within 5 s: /late/robot_description is deleted when "
+                "it does"),
+            std::string::npos)
+      << deleted.response.status_message;
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_NE(refused.response.status_message.find(
+                "the master did not answer within 5 s (checking robot_namespace); nothing "
+                "changed"),
+            std::string::npos)
+      << refused.response.status_message;
+  std::vector<std::string> expected = before.response.model_names;
+  expected.erase(std::find(expected.begin(), expected.end(), "late"));
+  EXPECT_EQ(during.response.model_names, expected) << "the delete made, the spawn refused";
+  // the delete's call is made once the master answers
+  EXPECT_TRUE(WaitFor([&] { return !nh_.hasParam("/late/robot_description"); }, 30.0));
+  EXPECT_FALSE(nh_.hasParam("/late2/robot_description"));
 }
 
 TEST_F(Master, TwoLongStepCallsDoNotStarveTheOtherServices) {

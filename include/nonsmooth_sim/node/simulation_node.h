@@ -47,6 +47,7 @@
 #include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
+#include "nonsmooth_sim/node/master_calls.h"
 #include "nonsmooth_sim/node/node_parameters.h"
 #include "nonsmooth_sim/world/world.h"
 
@@ -161,10 +162,13 @@ class SimulationNode {
   /// publisher of its topic if there is one, else it has none until AdvertiseWrenches; a removed
   /// slot's publisher sends a zero wrench and is kept (kept_wrench_pubs_).
   WrenchTopics WorldChanged();
-  /// Advertises the new topics and installs them in their slots (takes the mutex for that only),
-  /// then drops the publishers kept beyond the bound (unadvertised): the master calls of a spawn
-  /// or delete, made without the simulator mutex. Call with world_mutex_ held.
+  /// Advertises the new topics and installs them in their slots (takes the mutex for that only;
+  /// a topic whose slot is gone meanwhile is kept), then drops the publishers kept beyond the
+  /// bound (unadvertised): the master calls of a spawn or delete, made on master_calls_.
   void AdvertiseWrenches(WrenchTopics* topics);
+  /// Keeps the publisher of a removed slot (mutex held); the oldest beyond the bound go to
+  /// `dropped`.
+  void KeepWrenchPublisher(const ros::Publisher& publisher, std::vector<ros::Publisher>* dropped);
   std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
@@ -183,11 +187,11 @@ class SimulationNode {
   diagnostic_updater::Updater updater_;
 
   std::mutex mutex_;
-  /// Serialises ~spawn_urdf_model and ~delete_model, held across their master calls (taken
-  /// before mutex_, never while holding it).
+  /// Serialises ~spawn_urdf_model and ~delete_model, held while they wait for their master calls
+  /// (taken before mutex_, never while holding it).
   std::mutex world_mutex_;
   /// ~wrench/ publishers of removed collisions (resolved topic → publisher, and the topics oldest
-  /// first), under world_mutex_. They stay advertised, silent, and serve the next collision with
+  /// first), under mutex_. They stay advertised, silent, and serve the next collision with
   /// that topic: unadvertising calls the master while roscpp holds the lock that every publish
   /// and getNumSubscribers of the integrator takes, so a slow or stopped master would stall the
   /// stepping (under the simulator mutex) and with it every service. Beyond
@@ -264,6 +268,12 @@ class SimulationNode {
   /// other) never holds a thread of the node's spinner, so the other services keep answering
   ros::CallbackQueue step_queue_;
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;
+
+  /// the master calls of spawns and deletes (model_services.cpp): destroyed before the members
+  /// above, which its queued calls use, after the integrator has stopped
+  MasterCalls master_calls_;
+  /// the longest a spawn or delete waits for its master calls (docs/ros.md, "Bounds")
+  static constexpr std::chrono::milliseconds kMasterTimeout{5000};
 
   std::thread integrator_;  // last: started when everything above exists
 };
