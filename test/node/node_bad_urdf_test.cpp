@@ -154,6 +154,30 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      "no URDF");
 }
 
+// ~initial_state (rosparam load FILE ~initial_state) arrives from the master whole, with no byte
+// bound of its own: more entries than a world holds bodies, or a link name beyond the name bound,
+// stop the start-up before the entries are read.
+TEST(NodeBadUrdf, AnInitialStateBeyondTheBoundsStopsTheNode) {
+  const std::string urdf = "_urdf_file:=" + std::string(NONSMOOTH_SIM_SOURCE_DIR) +
+                           "/urdf/tippe_top.urdf";
+  XmlRpc::XmlRpcValue state;
+  state["position"][0] = 0.0;
+  state["position"][1] = 0.0;
+  state["position"][2] = 0.1;
+  XmlRpc::XmlRpcValue many;
+  for (int k = 0; k <= 4096; ++k) many["bodies"]["b" + std::to_string(k)] = state;
+  ros::param::set("/too_many_bodies/initial_state", many);
+  ExpectOneErrorLine(RunNode({"__name:=too_many_bodies", urdf}),
+                     {"~initial_state/bodies", "4097 entries, more than the bound of 4096"},
+                     "4097 bodies");
+  XmlRpc::XmlRpcValue long_name;
+  long_name["bodies"][std::string(300, 'x')] = state;
+  ros::param::set("/long_link_name/initial_state", long_name);
+  ExpectOneErrorLine(RunNode({"__name:=long_link_name", urdf}),
+                     {"~initial_state/bodies", "300 bytes, more than the bound of 256"},
+                     "a 300-byte link name");
+}
+
 // Files that are not regular files or exceed ~max_urdf_bytes are refused by type and size before
 // they are read: /dev/zero was read for about 1 GB, a FIFO without a writer hung the start-up.
 TEST(NodeBadUrdf, DevicesFifosAndOversizeFilesAreRefusedBeforeReading) {
