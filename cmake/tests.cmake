@@ -34,6 +34,11 @@ add_test(NAME simulate_files_test
 # address-space limit, so the out-of-memory case is skipped in sanitized builds
 set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300
   ENVIRONMENT "NONSMOOTH_SIM_SANITIZE=${NONSMOOTH_SIM_SANITIZE}")
+# `simulate` warns once for a body that can no longer touch anything and lists it in the summary
+add_test(NAME simulate_lost_bodies_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_lost_bodies_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_lost_bodies_test PROPERTIES TIMEOUT 300)
 # `simulate --schedule` runs the documented example and each event has its effect in the CSV
 add_test(NAME simulate_schedule_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py

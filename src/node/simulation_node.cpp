@@ -11,6 +11,7 @@
 #include <string>
 
 #include "nonsmooth_sim/core/overlaps.h"
+#include "nonsmooth_sim/world/lost_bodies.h"
 
 namespace nonsmooth_sim::node {
 namespace {
@@ -26,6 +27,8 @@ constexpr int kMinBatchedQueue = 100;
 constexpr std::int64_t kWallCheckSteps = 16;
 // A step with more solver iterations than this checks the wall clock at once.
 constexpr int kLongStepIterations = 100;
+// /diagnostics lists at most this many lost bodies by name (their count always).
+constexpr std::size_t kMaxLostListed = 10;
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
@@ -551,6 +554,17 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     snapshot_.pace = pace_;
     snapshot_.fault = fault_;
     snapshot_.faults = faults_;
+    snapshot_.lost.clear();
+    const Scene& scene = world_->sim().scene();
+    for (const world::LostBody& lost : world::FindLostBodies(scene, world_->sim().state())) {
+      snapshot_.lost.push_back(scene.bodies[static_cast<std::size_t>(lost.body)].name + " " +
+                               world::DescribeLostBody(scene, lost));
+    }
+  }
+  for (const std::string& lost : snapshot_.lost) {
+    if (std::find(logged_lost_.begin(), logged_lost_.end(), lost) != logged_lost_.end()) continue;
+    logged_lost_.push_back(lost);
+    ROS_WARN_STREAM("nonsmooth_sim: body " << lost);
   }
   // over the wall time the integrator ran in this period (not the paused time), and the sim time
   // it advanced in it (not ~step calls)
@@ -569,6 +583,10 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   const double steps = static_cast<double>(std::max<std::int64_t>(p.steps, 1));
   if (!s.fault.empty()) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, s.fault);
+  } else if (!s.lost.empty()) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "%zu bodies can no longer touch anything: body %s%s", s.lost.size(),
+                    s.lost.front().c_str(), s.lost.size() > 1 ? "; ..." : "");
   } else if (p.unconverged > 0) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lld of %lld steps: contact solver not converged",
@@ -610,6 +628,10 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("models", s.models);
   status.add("bodies", s.bodies);
   status.add("faults (failed steps) in total", s.faults);
+  status.add("bodies that can no longer touch anything", s.lost.size());
+  for (std::size_t k = 0; k < s.lost.size() && k < kMaxLostListed; ++k) {
+    status.add("lost body " + std::to_string(k + 1), s.lost[k]);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

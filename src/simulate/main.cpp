@@ -173,6 +173,17 @@ void ReportInitialOverlaps(const Simulator& simulator) {
   }
 }
 
+// Bodies that can no longer touch anything (world/lost_bodies.h): one warning each, when first
+// found.
+void CheckLostBodies(double t, const Simulator& simulator, RunMonitor* monitor,
+                     ProgressBar* progress) {
+  for (const LostBodyRecord& lost : monitor->CheckLostBodies(t, simulator)) {
+    progress->Finish();
+    std::fprintf(stderr, "simulate: warning: body \"%s\" %s (found at t = %.4g s)\n",
+                 lost.name.c_str(), lost.why.c_str(), lost.t);
+  }
+}
+
 // `schedule`: the events of --schedule before each step (nullptr: none).
 template <typename RecordRow>
 void RunFixed(const RunConfig& config, long steps, world::World* world, ScheduleRunner* schedule,
@@ -182,6 +193,7 @@ void RunFixed(const RunConfig& config, long steps, world::World* world, Schedule
   const double dt = config.options.time_step;
   StepStatistics stats;
   bool warned = false;
+  const long check_steps = std::max(1L, std::lround(kLostBodyCheckInterval / dt));
   for (long step = 1; step <= steps; ++step) {
     if (schedule != nullptr) schedule->Before(world, static_cast<double>(step - 1) * dt, dt);
     simulator->Step(&stats);
@@ -203,6 +215,7 @@ void RunFixed(const RunConfig& config, long steps, world::World* world, Schedule
       WarnExplicitGyroscopicUnsafe(stats.max_dt_omega, t, dt);
     }
     monitor->Observe(step, t, dt, *simulator, stats);
+    if (step % check_steps == 0) CheckLostBodies(t, *simulator, monitor, progress);
     if (record && (step % config.decimate == 0 || step == steps)) record_row(t, stats);
     progress->Update(step);
   }
@@ -222,6 +235,7 @@ void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* s
   const long steps = std::llround(config.duration / config.options.time_step);
   long step = 0;
   bool warned = false;
+  double next_check = kLostBodyCheckInterval;
   const auto observe = [&](const StepStatistics& s, double h) {
     ++step;
     if (s.explicit_gyroscopic_unsafe && !warned) {
@@ -243,6 +257,10 @@ void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* s
                    "\"state_finite\": false)\n",
                    simulator->time());
       break;
+    }
+    if (t >= next_check) {
+      CheckLostBodies(t, *simulator, monitor, progress);
+      next_check = t + kLostBodyCheckInterval;
     }
     if (record) record_row(t, stats);
     progress->Update(std::min<long>(steps, std::lround(t / config.options.time_step)));
@@ -289,6 +307,7 @@ int Run(const RunConfig& config) {
   };
   RunMonitor monitor(config, simulator);
   ProgressBar progress(steps, config.duration, !config.quiet);
+  CheckLostBodies(0.0, simulator, &monitor, &progress);
   StepStatistics stats;
   if (record) record_row(0.0, stats);
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/world/lost_bodies.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
@@ -110,6 +111,20 @@ void RunMonitor::Observe(long step, double t, double dt, const Simulator& simula
 void RunMonitor::ObserveNonFinite(double t) {
   summary_.state_finite = false;
   summary_.t_non_finite = t;
+}
+
+std::vector<LostBodyRecord> RunMonitor::CheckLostBodies(double t, const Simulator& simulator) {
+  std::vector<LostBodyRecord> found;
+  const Scene& scene = simulator.scene();
+  for (const world::LostBody& lost : world::FindLostBodies(scene, simulator.state())) {
+    const std::string& name = scene.bodies[static_cast<std::size_t>(lost.body)].name;
+    const auto seen = std::find_if(summary_.lost_bodies.begin(), summary_.lost_bodies.end(),
+                                   [&](const LostBodyRecord& r) { return r.name == name; });
+    if (seen != summary_.lost_bodies.end()) continue;
+    found.push_back({name, t, world::DescribeLostBody(scene, lost)});
+    summary_.lost_bodies.push_back(found.back());
+  }
+  return found;
 }
 
 RunSummary RunMonitor::Finish(const Simulator& simulator) {

@@ -13,6 +13,16 @@
 
 namespace nonsmooth_sim::simulate {
 
+/// A body that could no longer touch anything (world/lost_bodies.h), when it was first seen.
+struct LostBodyRecord {
+  std::string name;
+  double t = 0.0;    ///< [s] the check that found it (every kLostBodyCheckInterval)
+  std::string why;  ///< DescribeLostBody
+};
+
+/// [s] of simulated time between two checks for lost bodies.
+inline constexpr double kLostBodyCheckInterval = 0.1;
+
 struct RunSummary {
   RunConfig config;
   /// The built-in Tippe-Top (its observables below are set); false for a --urdf scene.
@@ -68,6 +78,7 @@ struct RunSummary {
   double mean_iterations = 0.0;
   int max_iterations = 0;
   long unconverged_steps = 0;
+  std::vector<LostBodyRecord> lost_bodies;  ///< in the order they were found
 };
 
 /// Accumulates RunSummary step by step without allocating.
@@ -79,6 +90,9 @@ class RunMonitor {
                const StepStatistics& stats);
   /// The step ending at t met a non-finite value and was not taken.
   void ObserveNonFinite(double t);
+  /// At the start and every kLostBodyCheckInterval: the bodies that can no longer touch
+  /// anything, recorded once each; returns those found now for the first time.
+  std::vector<LostBodyRecord> CheckLostBodies(double t, const Simulator& simulator);
   RunSummary Finish(const Simulator& simulator);
   void SetAdaptive(const AdaptiveStatistics& statistics) { summary_.adaptive = statistics; }
 

@@ -3,6 +3,7 @@
 // good URDF with the same command line starts (the cases fail for their defect, not the setup).
 // Files that are devices, FIFOs or beyond ~max_urdf_bytes, and names that share a frame after
 // sanitising, are such defects too.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -14,6 +15,7 @@
 
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -236,6 +238,48 @@ TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {
   const std::string all = run.out + run.err;
   EXPECT_NE(all.find("collisions \"shell\" and \"ground\" overlap by 0.05 m"), std::string::npos)
       << all;
+}
+
+// A body whose only collision is skipped (a mesh) starts and falls for ever: the node warns once
+// that it never touches anything, and /diagnostics says so (WARN) while it runs.
+TEST(NodeBadUrdf, ABodyThatCanTouchNothingIsAWarningInTheLogAndInDiagnostics) {
+  const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_mesh_top.urdf";
+  std::ofstream(path) << "<robot name=\"r\"><link name=\"top\"><inertial><mass value=\"0.1\"/>"
+                         "<inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" "
+                         "izz=\"1e-4\"/></inertial><collision name=\"hull\"><geometry>"
+                         "<mesh filename=\"package://x/top.stl\"/></geometry></collision></link>"
+                         "</robot>";
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  std::string summary;  // the WARN's message, once one came (under mutex)
+  ros::Subscriber diagnostics = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& status : m->status) {
+          if (status.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+              status.message.find("can no longer touch anything") != std::string::npos) {
+            const std::lock_guard<std::mutex> lock(mutex);
+            summary = status.message;
+          }
+        }
+      });
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const NodeRun run =
+      RunNode({"__name:=mesh_top", "_urdf_file:=" + path, "_paused:=true"}, [&] {
+        const std::lock_guard<std::mutex> lock(mutex);
+        return !summary.empty();
+      });
+  spinner.stop();
+  diagnostics.shutdown();
+  EXPECT_FALSE(run.exited) << "exit code " << run.exit_code << ", stderr:\n" << run.err;
+  EXPECT_EQ(summary,
+            "1 bodies can no longer touch anything: body top has no collision: it never touches "
+            "anything");
+  const std::string all = run.out + run.err;
+  const std::string warning = "body top has no collision: it never touches anything";
+  const std::size_t first = all.find(warning);
+  EXPECT_NE(first, std::string::npos) << all;
+  EXPECT_EQ(all.find(warning, first + 1), std::string::npos) << "warned twice:\n" << all;
 }
 
 TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {

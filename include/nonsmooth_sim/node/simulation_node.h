@@ -260,7 +260,11 @@ class SimulationNode {
     double pace = 0.0;
     std::string fault;
     std::int64_t faults = 0;
+    /// bodies that can no longer touch anything (world/lost_bodies.h): "<name> <why>"
+    std::vector<std::string> lost;
   } snapshot_;
+  /// the lost bodies already logged (a WARN once each; diagnostics thread)
+  std::vector<std::string> logged_lost_;
   double previous_running_wall_ = 0.0;
   double previous_running_sim_time_ = 0.0;
 
