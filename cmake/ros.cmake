@@ -85,6 +85,7 @@ if(CATKIN_ENABLE_TESTING)
   # the launch files with a model of the user's own: scene.launch, and tippe_top.launch with the
   # same test
   nonsmooth_sim_rostest(node_launch_model_test)
+  nonsmooth_sim_rostest(node_fixed_links_test)
   add_rostest(test/node/node_launch_model_tippe.test DEPENDENCIES node_launch_model_test)
   set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_launch_model_tippe.test
     PROPERTIES ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)

@@ -205,6 +205,26 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
   }
 }
 
+std::vector<geometry_msgs::TransformStamped> FixedLinkTransforms(
+    const scene_io::UrdfScene& urdf, const std::string& prefix, const std::string& world_frame,
+    bool world_links, const ros::Time& stamp) {
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const scene_io::FixedLink& link : urdf.fixed_links) {
+    if (link.body == kWorld && !world_links) continue;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id =
+        link.body == kWorld ? world_frame
+                            : prefix + urdf.scene.bodies[static_cast<std::size_t>(link.body)].name;
+    t.child_frame_id = prefix + link.name;
+    if (t.child_frame_id == t.header.frame_id || t.child_frame_id == world_frame) continue;
+    Set(Eigen::Vector3d(link.pose.translation()), &t.transform.translation);
+    Set(Eigen::Quaterniond(link.pose.linear()), &t.transform.rotation);
+    transforms.push_back(std::move(t));
+  }
+  return transforms;
+}
+
 void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                       tf2_msgs::TFMessage* msg) {
   const Scene& scene = sim.scene();

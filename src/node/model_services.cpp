@@ -125,12 +125,16 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
   const world::Model& added = *spawned;
   name = added.name;
   topics = WorldChanged();
+  // its links merged into its bodies (its static links are placed by the spawn: not in TF)
+  fixed_links_[name] = FixedLinkTransforms(urdf, added.prefix, parameters_.world_frame,
+                                           /*world_links=*/false, StampOf(world_->sim().time()));
   res.success = true;
   res.status_message = "spawned " + added.name + " (" + std::to_string(added.bodies.size()) +
                        " bodies, " + std::to_string(added.colliders.size()) +
                        " collisions) at t = " + std::to_string(world_->sim().time()) +
                        " s; its URDF is " + added.description;
   lock.unlock();
+  PublishFixedLinks();
   // the master, without the simulator mutex: the simulation steps on and the other services
   // answer while it is slow or stopped
   const bool answered = master_calls_.Run(
@@ -164,11 +168,13 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
   }
   description = removed.description;
   topics = WorldChanged();
+  fixed_links_.erase(removed.name);
   res.success = true;
   res.status_message = "deleted " + removed.name + " (" + std::to_string(removed.bodies.size()) +
                        " bodies, " + std::to_string(removed.colliders.size()) +
                        " collisions) at t = " + std::to_string(world_->sim().time()) + " s";
   lock.unlock();
+  PublishFixedLinks();
   // the master, without the simulator mutex (as in OnSpawnUrdfModel)
   const bool answered = master_calls_.Run(
       [this, description, topics = std::move(topics)]() mutable {
@@ -229,6 +235,14 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
   markers_pub_.publish(DeleteAllMarkers(frames_.world));
   markers_count_ = 0;
   return topics;
+}
+
+void SimulationNode::PublishFixedLinks() {
+  tf2_msgs::TFMessage message;
+  for (const auto& [model, transforms] : fixed_links_) {
+    message.transforms.insert(message.transforms.end(), transforms.begin(), transforms.end());
+  }
+  tf_static_pub_.publish(message);
 }
 
 void SimulationNode::KeepWrenchPublisher(const ros::Publisher& publisher,

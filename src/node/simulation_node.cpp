@@ -92,6 +92,13 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", batched_queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
+  // the links merged into bodies or fixed to the world, as robot_state_publisher sends fixed
+  // joints: rviz's RobotModel shows every link with nothing else running
+  tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
+  fixed_links_[world_->models().models().front().name] =
+      FixedLinkTransforms(world_->urdf(), "", parameters_.world_frame, /*world_links=*/true,
+                          StampOf(world_->sim().time()));
+  PublishFixedLinks();
   for (const std::string& topic : frames_.topics) {
     wrench_pubs_.push_back(
         private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + topic, queue));

@@ -413,6 +413,7 @@ class Builder {
                         "inertial");
       }
       AddColliders(*member.link, group.world_pose * member.pose, kWorld);
+      result_.fixed_links.push_back({member.link->name, kWorld, group.world_pose * member.pose});
     }
   }
 
@@ -440,7 +441,9 @@ class Builder {
     std::vector<std::string> merged;
     for (const Member& member : group.members) {
       AddColliders(*member.link, link_in_body * member.pose, index);
-      if (member.link != &link) merged.push_back(member.link->name);
+      if (member.link == &link) continue;
+      merged.push_back(member.link->name);
+      result_.fixed_links.push_back({member.link->name, index, member.pose});
     }
     // the body as a whole (links merged): its mass, its inertia against its size, its start
     double extent = 0.0;

@@ -16,6 +16,7 @@
 #include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/SimulationState.h"
 #include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
 #include "nonsmooth_sim/world/names.h"
 #include "nonsmooth_sim/world/placement.h"
 
@@ -59,6 +60,14 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
 /// stamped `stamp`, after the transforms msg already holds (a message may carry several stamps).
 void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                       tf2_msgs::TFMessage* msg);
+
+/// /tf_static for one model: each link without a body of its own (scene_io::FixedLink) in the
+/// frame of its body's link, or in `world_frame` for a link fixed to the world (only with
+/// `world_links`); names prefixed with `prefix` ("" for the start-up model, "<model>/" for a
+/// spawned one); a link that is `world_frame` itself is left out. Stamped `stamp`.
+std::vector<geometry_msgs::TransformStamped> FixedLinkTransforms(
+    const scene_io::UrdfScene& urdf, const std::string& prefix, const std::string& world_frame,
+    bool world_links, const ros::Time& stamp);
 
 /// The contact wrench λ = Λ/Δt on slot `slot`'s collider, summed over its closed contacts, about
 /// and in the axes of its slot frame (one contact: the force and the drilling torque at it). Zero

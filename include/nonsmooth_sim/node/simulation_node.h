@@ -170,6 +170,8 @@ class SimulationNode {
   /// `dropped`.
   void KeepWrenchPublisher(const ros::Publisher& publisher, std::vector<ros::Publisher>* dropped);
   std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
+  /// Sends every model's fixed links on /tf_static as one latched message.
+  void PublishFixedLinks();
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -181,6 +183,10 @@ class SimulationNode {
 
   ros::NodeHandle nh_, private_nh_;
   ros::Publisher clock_pub_, tf_pub_, contacts_pub_, state_pub_, markers_pub_;
+  /// /tf_static (latched): the links without a body of their own, per model (the start-up one
+  /// at construction, spawned ones under world_mutex_); PublishFixedLinks sends them all
+  ros::Publisher tf_static_pub_;
+  std::map<std::string, std::vector<geometry_msgs::TransformStamped>> fixed_links_;
   std::vector<ros::Publisher> wrench_pubs_;  ///< per slot; empty until advertised
   std::vector<ros::ServiceServer> services_;
   ros::WallTimer diagnostics_timer_;

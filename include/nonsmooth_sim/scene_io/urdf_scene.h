@@ -128,6 +128,14 @@ struct UrdfSceneOptions {
   std::size_t max_bytes = kMaxInputBytes;
 };
 
+/// A link without a body of its own, for TF: merged into body `body` by fixed joints (`pose`: its
+/// frame in that body's link frame) or fixed to the world (body kWorld, `pose` in the world).
+struct FixedLink {
+  std::string name;
+  int body = kWorld;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
 struct UrdfScene {
   std::string robot_name;  ///< <robot name="...">
   /// Bodies, colliders and laws; initial_state holds every body at its URDF pose, at rest
@@ -141,6 +149,9 @@ struct UrdfScene {
   /// Per body: the links merged into it by fixed joints, in document order (its own link,
   /// RigidBody::name, excluded).
   std::vector<std::vector<std::string>> merged_links;
+  /// Every link that is not a body's own (the static world's, those merged into bodies), in
+  /// document order per group: fixed transforms for TF.
+  std::vector<FixedLink> fixed_links;
   /// What was skipped and why, one line each ("urdf: ...").
   std::vector<std::string> warnings;
 };
