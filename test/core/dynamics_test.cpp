@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "allocation_counter.h"  // Step.DoesNotAllocate...: the heap allocation count
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
@@ -611,8 +611,9 @@ TEST(ContactKinematics, SphereOnGroundMatchesTheWorldFrameVelocityOfTheContactPo
     sphere_pose.linear() = m.rotation;
     sphere_pose.translation() = m.position + m.rotation * center;
     ContactGeometry geometry[kMaxPairContacts];
-    ASSERT_EQ(Collide(ground.shape, ground.pose, Shape::Sphere(radius), sphere_pose,
-                      std::numeric_limits<double>::infinity(), geometry),
+    ASSERT_EQ(CollisionTable::Defaults().Collide(ground.shape, ground.pose, Shape::Sphere(radius),
+                                                 sphere_pose,
+                                                 std::numeric_limits<double>::infinity(), geometry),
               1);
     const Eigen::Vector3d p = m.position + m.rotation * center - radius * Eigen::Vector3d::UnitZ();
     EXPECT_NEAR(geometry[0].gap, p.z(), 1e-14);

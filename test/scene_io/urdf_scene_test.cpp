@@ -12,7 +12,7 @@
 #include <optional>
 #include <sstream>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
@@ -657,19 +657,20 @@ TEST(UrdfLoader, SpheresOffTheAxisAreNotATippeTop) {
 // --- collide functions ---------------------------------------------------------------------------
 
 TEST(UrdfLoader, PairsWithoutACollideFunctionAreReported) {
-  // a ball on a world box: the sphere-box pair, unregistered for this test and then restored
+  // a ball on a world box: reported with a table without the sphere-box pair, not with the
+  // defaults; the scene carries the options' table
   const std::string xml = World(
       "<collision name=\"block\"><geometry><box size=\"1 1 1\"/></geometry></collision>",
       FloatingBall("ball", "0 0 2", "ball"));
-  const CollideFunction registered = FindCollideFunction(ShapeType::kSphere, ShapeType::kBox);
-  RegisterCollideFunction(ShapeType::kSphere, ShapeType::kBox, nullptr);
-  const UrdfScene missing = SceneFromUrdf(xml);
-  RegisterCollideFunction(ShapeType::kSphere, ShapeType::kBox, registered);
+  UrdfSceneOptions without_pair;
+  without_pair.collision_table.Register(ShapeType::kSphere, ShapeType::kBox, nullptr);
+  const UrdfScene missing = SceneFromUrdf(xml, without_pair);
   EXPECT_TRUE(HasWarning(missing, {"no collide function for sphere-box pairs", "\"ball\"",
                                    "\"block\""}));
-  if (registered != nullptr) {
-    EXPECT_FALSE(HasWarning(SceneFromUrdf(xml), {"no collide function"}));
-  }
+  EXPECT_EQ(missing.scene.collision_table.Find(ShapeType::kSphere, ShapeType::kBox), nullptr);
+  const UrdfScene with_pair = SceneFromUrdf(xml);
+  EXPECT_FALSE(HasWarning(with_pair, {"no collide function"}));
+  EXPECT_NE(with_pair.scene.collision_table.Find(ShapeType::kSphere, ShapeType::kBox), nullptr);
 }
 
 // --- errors --------------------------------------------------------------------------------------
