@@ -2,7 +2,8 @@
 //
 //  - FCL's conventions, on FCL directly: the normal points from o1 to o2, the nearest points are
 //    in the world frame (a rotated o1 would show a local frame).
-//  - Registration: RegisterFclPairs() fills exactly the pairs of a table without a closed form.
+//  - Registration: RegisterFclPairs fills exactly the pairs without a closed form, in the table it
+//    is given.
 //  - Against the closed forms: CollideFcl registered in place of sphere–sphere, sphere–box and
 //    capsule–capsule, and on spheres written as ellipsoids (a, a, a), which FCL handles by its
 //    general path (MPR, refined) rather than its sphere formulas: gap and normal at 1000
