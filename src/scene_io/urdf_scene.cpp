@@ -292,6 +292,7 @@ class Builder {
     result_.warnings = xml_.warnings;
     CheckExtensionReferences();
     result_.scene.gravity = Eigen::Vector3d(0.0, 0.0, -options_.gravity);
+    result_.scene.collision_table = options_.collision_table;
     const urdf::Link& root = *model_.getRoot();
     Collect(root, root.inertial ? GroupKind::kFree : GroupKind::kWorld, "",
             Eigen::Isometry3d::Identity());
@@ -599,7 +600,7 @@ class Builder {
           const auto y = std::find_if(seen[b].begin(), seen[b].end(),
                                       [&](const Seen& s) { return s.body != x.body; });
           if (y == seen[b].end()) continue;
-          if (FindCollideFunction(ta, tb) == nullptr) {
+          if (result_.scene.collision_table.Find(ta, tb) == nullptr) {
             result_.warnings.push_back(
                 "urdf: no collide function for " + std::string(ShapeTypeName(ta)) + "-" +
                 std::string(ShapeTypeName(tb)) + " pairs (e.g. colliders " + Quoted(*x.name) +

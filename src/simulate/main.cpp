@@ -129,9 +129,19 @@ void WarnExplicitGyroscopicUnsafe(double dt_omega, double t, double dt) {
                kExplicitGyroscopicMaxDtOmega * dt / dt_omega);
 }
 
-// The loader's options of a URDF: the laws the command line overrides.
+// The collision table of every scene of a run (the URDF's, the built-in Tippe-Top's, the
+// scheduled models'): the core's closed forms, and FCL for the convex pairs without one (box–box,
+// cylinder–box, ...).
+CollisionTable RunCollisionTable() {
+  CollisionTable table = CollisionTable::Defaults();
+  RegisterFclPairs(&table);
+  return table;
+}
+
+// The loader's options of a URDF: the laws the command line overrides, the run's collision table.
 scene_io::UrdfSceneOptions UrdfOptions(const RunConfig& config) {
   scene_io::UrdfSceneOptions options;
+  options.collision_table = RunCollisionTable();
   if (config.friction_set_given) options.friction_set = config.parameters.friction_set;
   if (config.mu_given) options.mu = config.parameters.mu;
   if (config.contact_radius_given) options.contact_radius = config.parameters.contact_radius;
@@ -143,7 +153,11 @@ scene_io::UrdfSceneOptions UrdfOptions(const RunConfig& config) {
 // one line.
 Scene BuildScene(const RunConfig& config, std::string* name) {
   *name = "tippe_top";
-  if (config.urdf_path.empty()) return MakeTippeTopScene(config.parameters, config.initial);
+  if (config.urdf_path.empty()) {
+    Scene scene = MakeTippeTopScene(config.parameters, config.initial);
+    scene.collision_table = RunCollisionTable();  // scheduled models may bring boxes
+    return scene;
+  }
   scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, UrdfOptions(config));
   *name = urdf.robot_name;
   for (const std::string& warning : urdf.warnings) {
@@ -349,8 +363,6 @@ int Run(const RunConfig& config) {
 
 int main(int argc, char** argv) {
   using namespace nonsmooth_sim::simulate;
-  // the convex pairs without a closed form (box–box, cylinder–box, ...) through FCL
-  nonsmooth_sim::RegisterFclPairs();
   const ParseResult parsed = ParseCommandLine(argc, argv);
   if (std::holds_alternative<HelpRequest>(parsed)) {
     std::fputs(UsageText().c_str(), stdout);

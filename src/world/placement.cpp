@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/world/checks.h"
 
@@ -104,8 +104,9 @@ double TouchingHeight(const Scene& scene, int body, const Eigen::Quaterniond& q,
   for (const Collider& c : scene.colliders) {
     if (c.body != body) continue;
     ContactGeometry points[kMaxPairContacts];
-    const int count = Collide(ground, Eigen::Isometry3d::Identity(), c.shape, body_pose * c.pose,
-                              std::numeric_limits<double>::infinity(), points);
+    const int count = scene.collision_table.Collide(
+        ground, Eigen::Isometry3d::Identity(), c.shape, body_pose * c.pose,
+        std::numeric_limits<double>::infinity(), points);
     // gap = height of the lowest point with r_S at z = 0: r_S must be raised by -gap
     for (int k = 0; k < count; ++k) height = std::max(height, -points[k].gap);
   }

@@ -102,11 +102,12 @@ void RunScene(const ShippedScene& shipped, const scene_io::InitialStateSpec& spe
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();
+  scene_io::UrdfSceneOptions options;
+  RegisterFclPairs(&options.collision_table);  // as the node and simulate load
   for (const char* name : {"tippe_top", "tippe_top_duel", "die"}) {
     ShippedScene s;
     s.urdf = scene_io::LoadUrdfFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/" + name +
-                                    ".urdf");
+                                    ".urdf", options);
     s.start = world::InitialState(s.urdf, 0, world::InitialConditions{});
     Scenes().push_back(std::move(s));
   }

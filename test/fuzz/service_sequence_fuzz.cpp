@@ -625,12 +625,13 @@ void Delete(Session& w, FuzzedDataProvider& in) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();
+  scene_io::UrdfSceneOptions options;
+  RegisterFclPairs(&options.collision_table);  // as the node and simulate load
   for (const char* name : {"tippe_top", "tippe_top_duel", "die", "coin"}) {
     const std::string path = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/" + name + ".urdf";
     ShippedScene s;
-    s.urdf = scene_io::LoadUrdfFile(path);
-    scene_io::UrdfSceneOptions no_ground;
+    s.urdf = scene_io::LoadUrdfFile(path, options);
+    scene_io::UrdfSceneOptions no_ground = options;
     no_ground.ground = false;  // as a spawned model: the world has its ground
     s.model = scene_io::LoadUrdfFile(path, no_ground).scene;
     Scenes().push_back(std::move(s));

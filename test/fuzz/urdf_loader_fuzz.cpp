@@ -58,18 +58,23 @@ void CheckYamlRoundTrip(const Scene& scene) {
   }
 }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();  // as the node and simulate do at start-up
-  return 0;
+// The default options with the FCL pairs in the collision table, as the node and simulate load.
+const scene_io::UrdfSceneOptions& LoaderOptions() {
+  static const scene_io::UrdfSceneOptions options = [] {
+    scene_io::UrdfSceneOptions o;
+    RegisterFclPairs(&o.collision_table);
+    return o;
+  }();
+  return options;
 }
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   scene_io::UrdfScene urdf;
   try {
-    urdf = scene_io::SceneFromUrdf(text);
+    urdf = scene_io::SceneFromUrdf(text, LoaderOptions());
   } catch (const std::exception& e) {
     fuzz::RequireClearError(e, "SceneFromUrdf");
     return 0;

@@ -41,7 +41,8 @@ struct NodeParameters {
                                   ///< (default: its <robot name>)
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius,
                                   ///< ~max_urdf_bytes (max_bytes: of ~urdf_file,
-                                  ///< robot_description and ~spawn_urdf_model's model_xml)
+                                  ///< robot_description and ~spawn_urdf_model's model_xml);
+                                  ///< collision_table: the defaults (main adds FCL's pairs)
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
                                   ///< ~max_iterations, ~relaxation, ~gyroscopic, ~integrator,
                                   ///< ~gap_correction (bool, default true)

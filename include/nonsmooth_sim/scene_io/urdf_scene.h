@@ -28,8 +28,9 @@
 //    link) when empty; every name once in the scene; "ground" is the ground plane's when
 //    options.ground (GroundPlane(), the last collider).
 //  - order: world colliders, then each body's (its own link's first), then the ground.
-//  - a pair of shape types that can meet (on different bodies, or a body and the world) but has
-//    no collide function (core/collision/collision.h) is reported in warnings.
+//  - the scene collides with options.collision_table (Scene::collision_table): a pair of shape
+//    types that can meet (on different bodies, or a body and the world) but has no function in it
+//    (core/collision/collision_table.h) is reported in warnings.
 //
 // Contact laws (per collider, from the tags of its own link):
 //      <gazebo reference="link"><collision><surface><friction>
@@ -126,6 +127,9 @@ struct UrdfSceneOptions {
   /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
   /// in [1, kMaxInputBytesOption]
   std::size_t max_bytes = kMaxInputBytes;
+  /// the pair functions of the scene (its Scene::collision_table): the core's closed forms, or
+  /// with RegisterFclPairs (collision_fcl/fcl_pairs.h) also the convex pairs without one
+  CollisionTable collision_table = CollisionTable::Defaults();
 };
 
 /// A link without a body of its own, for TF: merged into body `body` by fixed joints (`pose`: its

@@ -55,8 +55,8 @@ std::vector<BodyState> RigidlyMoved(const Simulator& sim, const std::vector<int>
                                     const Pose& pose, const Twist& twist);
 
 /// Height of r_S at which the lowest collider of `body` just touches z = 0 in orientation `q`
-/// (its gap against the ground plane by the collision table); `fallback` for a body without
-/// colliders the table can put on a plane.
+/// (its gap against the ground plane by the scene's collision table); `fallback` for a body
+/// without colliders the table can put on a plane.
 double TouchingHeight(const Scene& scene, int body, const Eigen::Quaterniond& q, double fallback);
 
 }  // namespace nonsmooth_sim::world
