@@ -44,12 +44,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/force_sets.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 // Newton stops when its step is below this many ulps of the unknown.
 constexpr double kStepTolerance = 4.0 * kEpsilon;

@@ -13,19 +13,18 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/contact_solver.h"
 
 namespace nonsmooth_sim::contact_solver_support {
 
 inline constexpr std::uint64_t kSeed = 1620091;
-inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kInverseGoldenRatio = 0.618033988749895;  // golden-section search
 
 inline ContactLaw MakeLaw(FrictionSet set, double mu, double rbar) {

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "brute_force_projection.h"
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/force_sets.h"
 
 namespace nonsmooth_sim::force_sets_support {
@@ -43,7 +44,6 @@ using brute_force::MeridianSet;
 using brute_force::Quad;
 using brute_force::QuadPoint;
 
-inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline constexpr std::uint64_t kSeed = 0x5eed2009;

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "simulator_world_support.h"
 
 namespace nonsmooth_sim {
@@ -21,8 +22,6 @@ using simulator_world_support::StateDifference;
 using simulator_world_support::TopA;
 using simulator_world_support::TopB;
 using simulator_world_support::World;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // --- external wrench
 
