@@ -1,6 +1,6 @@
 // One step of each shipped scene (urdf/<scene>.urdf with config/<scene>.yaml): ns per step and
 // closed contacts and solver iterations per step, after a warm-up into the scene's typical
-// contact phase. Timing lives here, never in the tests. Run through scripts/bench.
+// contact phase. Timing lives here, never in the tests. Run through scripts/dev/bench.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>

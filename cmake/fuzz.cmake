@@ -1,4 +1,4 @@
-# Coverage-guided fuzzing with libFuzzer (test/fuzz, scripts/fuzz; docs/testing.md, "Fuzzing").
+# Coverage-guided fuzzing with libFuzzer (test/fuzz, scripts/dev/fuzz; docs/testing.md, "Fuzzing").
 # Off by default: with NONSMOOTH_SIM_FUZZ OFF this file defines nothing. With it ON (clang only)
 # it adds the fuzz executables, each built only on request (`cmake --build <dir> --target fuzz`):
 #
@@ -11,12 +11,12 @@
 # AddressSanitizer, LeakSanitizer, UBSan; assertions on), so the regular libraries and every other
 # target stay exactly as without the option. Included last from CMakeLists.txt (the source lists
 # of the libraries are set by then).
-option(NONSMOOTH_SIM_FUZZ "Build the libFuzzer targets of test/fuzz (clang only; scripts/fuzz)" OFF)
+option(NONSMOOTH_SIM_FUZZ "Build the libFuzzer targets of test/fuzz (clang only; scripts/dev/fuzz)" OFF)
 
 if(NONSMOOTH_SIM_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "NONSMOOTH_SIM_FUZZ needs clang (libFuzzer), got ${CMAKE_CXX_COMPILER_ID}: "
-                        "configure with -DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz does)")
+                        "configure with -DCMAKE_CXX_COMPILER=clang++ (scripts/dev/fuzz does)")
   endif()
   # every sanitizer finding aborts (libFuzzer then writes the input as crash-<sha1>); -UNDEBUG
   # keeps Eigen's index and size assertions

@@ -20,8 +20,8 @@ install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_
 install(DIRECTORY launch urdf config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 # rosrun nonsmooth_sim scene_report.py ...; the shebang becomes the configured
 # PYTHON_EXECUTABLE (default /usr/bin/python3; cmake -DPYTHON_EXECUTABLE=... to change)
-catkin_install_python(PROGRAMS scripts/scene_report.py scripts/tradeoff_report.py
+catkin_install_python(PROGRAMS scripts/scene_report.py scripts/dev/tradeoff_report.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # tradeoff_report.py's modules, next to it
-install(DIRECTORY scripts/tradeoff_study DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
+install(DIRECTORY scripts/dev/tradeoff_study DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
   FILES_MATCHING PATTERN "*.py")

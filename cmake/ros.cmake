@@ -24,7 +24,7 @@ add_executable(nonsmooth_sim_node src/node/main.cpp)
 target_link_libraries(nonsmooth_sim_node PRIVATE nonsmooth_sim_ros)
 set_target_properties(nonsmooth_sim_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
 
-# The counting subscriber of scripts/node-speed (a measurement tool, not a test).
+# The counting subscriber of scripts/dev/node-speed (a measurement tool, not a test).
 add_executable(node_speed_subscriber bench/node_speed_subscriber.cpp)
 target_link_libraries(node_speed_subscriber PRIVATE ${catkin_LIBRARIES})
 add_dependencies(node_speed_subscriber ${PROJECT_NAME}_generate_messages_cpp)

@@ -46,7 +46,7 @@ add_test(NAME simulate_schedule_test
 set_tests_properties(simulate_schedule_test PROPERTIES TIMEOUT 300)
 
 # ---------------------------------------------------------------------------------------------
-# Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:
+# Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/dev/bench:
 # the core's pieces, the shape pairs (closed forms next to FCL), one step of each shipped scene.
 find_package(benchmark QUIET)
 file(GLOB NONSMOOTH_SIM_BENCH_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bench/*_bench.cpp)

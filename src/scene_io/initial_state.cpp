@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <utility>
 
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -31,12 +31,6 @@ constexpr Key kKeys[] = {
 };
 
 int Line(const YAML::Node& node) { return node.Mark().line + 1; }
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 // The bound of key `name` on `value` (initial_state.h); throws std::invalid_argument "<reason>".
 void CheckKey(const std::string& name, const Eigen::Vector3d& value) {

@@ -11,10 +11,10 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -100,12 +100,6 @@ struct MassProperties {
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 std::string FormatVector(const Eigen::Vector3d& v) {
   return "(" + Format(v.x()) + ", " + Format(v.y()) + ", " + Format(v.z()) + ")";

@@ -11,13 +11,16 @@
 #include <map>
 #include <sstream>
 
+#include "nonsmooth_sim/core/constants.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using scene_io::Format;
+
 constexpr double kMinTimeStep = 1e-7;   // [s], as ValidateSimulatorOptions
 constexpr double kMaxTimeStep = 1e-2;   // [s]
 constexpr double kMaxDuration = 1e5;    // [s], keeps the step count far inside a long
@@ -28,12 +31,6 @@ constexpr long kMaxIterationsLimit = kMaxSimulatorIterations;
 struct Error {
   std::string message;
 };
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 Error BadValue(const std::string& option, const std::string& value, const std::string& allowed) {
   return {"invalid value '" + value + "' for " + option + ": expected " + allowed};

@@ -7,13 +7,13 @@
 #include <cstdio>
 #include <limits>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/world/lost_bodies.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Inclination thresholds of the summary [rad]: horizontal, peg touchdown (both spheres touch at
 // θ* ≈ 2.449), inverted.
 constexpr double kThetaHorizontal = 0.5 * kPi;

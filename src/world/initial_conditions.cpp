@@ -8,13 +8,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/world/placement.h"
 
 namespace nonsmooth_sim::world {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 template <typename T>
 std::optional<T> Pick(const std::optional<T>& over, const std::optional<T>& def) {

@@ -3,12 +3,11 @@
 
 #include <Eigen/Geometry>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/rigid_body_dynamics.h"
 
 namespace nonsmooth_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(MassProperties, ParallelAxisAndRotation) {
   // a point mass m at r from O has Θ_O = m(|r|²I - rrᵀ) and nothing about itself

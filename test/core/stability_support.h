@@ -27,14 +27,13 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "scene_builders.h"
 
 namespace nonsmooth_sim::stability {
 
-
-inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr int kBig = kBigSphere;  // collider indices of MakeTippeTopScene
 inline constexpr int kPeg = kPegSphere;

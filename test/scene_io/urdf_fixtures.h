@@ -9,11 +9,10 @@
 #include <initializer_list>
 #include <string>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::scene_io::urdf_test {
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 inline std::string SourcePath(const std::string& relative) {
   return std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/" + relative;

@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::kPi;
 using scene_test::MaxPointSpeed;
 using scene_test::Runner;
 

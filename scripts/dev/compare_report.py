@@ -1,16 +1,16 @@
 #!/usr/bin/python3
 """Runs the Tippe-Top against the peer engines and writes docs/compare.md and its figure.
 
-Called by scripts/compare (which installs the engines and builds bench/peers and `simulate`);
+Called by scripts/dev/compare (which installs the engines and builds bench/peers and `simulate`);
 by hand:
 
-    scripts/compare_report.py --simulate BIN --peers-dir DIR --scenes-dir DIR [options]
+    scripts/dev/compare_report.py --simulate BIN --peers-dir DIR --scenes-dir DIR [options]
 
 Three measurements, every run pinned to one core (taskset -c CPU), one process at a time, all of
 them interleaved (round-robin over every configuration, R rounds), CPU time of the stepping
 loop only, median of R, and the peak RSS of every run (/usr/bin/time -f %M):
   (a) one Tippe-Top, config/tippe_top.yaml start, DURATION s at DT: ours per friction set (the
-      built-in scene, as scripts/speed runs it) and each peer engine per setting, with the
+      built-in scene, as scripts/dev/speed runs it) and each peer engine per setting, with the
       physics (inversion, peg touchdown, energy);
   (b) N independent tops (bench/peers/multi_top_scene.py, StartOf() of
       bench/peers/tippe_top_scene.h) for SCALING_DURATION s (N >= LARGE_N: LARGE_N_DURATION s,
@@ -22,7 +22,7 @@ loop only, median of R, and the peak RSS of every run (/usr/bin/time -f %M):
 The scenes of (b) and (c) are written into SCENES_DIR here. With --from-log LOG nothing runs:
 the page and figure are written again from the runs LOG holds (the --log of an earlier call).
 
-The work is in scripts/peer_compare/: run.py (the plan, the runs, the log), analyse.py
+The work is in scripts/dev/peer_compare/: run.py (the plan, the runs, the log), analyse.py
 (medians, costs, ratios) and report.py (the page and the figure); this file reads the options.
 """
 import argparse
@@ -67,7 +67,7 @@ def parse_args():
     p.add_argument("--doc", default=os.path.join(ROOT, "docs", "compare.md"))
     p.add_argument("--figure", default=os.path.join(ROOT, "docs", "figures", "compare_scaling.png"))
     p.add_argument("--log", help="write every run as a JSON line here")
-    p.add_argument("--command", default="scripts/compare", help="the command, for the doc")
+    p.add_argument("--command", default="scripts/dev/compare", help="the command, for the doc")
     args = p.parse_args()
     meta = None
     if args.from_log:

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The speed-accuracy trade study of the Tippe-Top, run by `scripts/tradeoff`.
+"""The speed-accuracy trade study of the Tippe-Top, run by `scripts/dev/tradeoff`.
 
 Runs the headless `simulate` over a grid friction set x solver x dt x tolerance, a converged
 reference per friction law (and the same reference with dt and tolerance halved, to show it is
@@ -21,7 +21,7 @@ points (theta sampled every SAMPLE_DT from simulate's CSV):
     max_energy_increase  largest E(t+dt) - E(t) [J] (exact value 0)
 
 Uses Debian's python3 with python3-matplotlib and numpy (never another interpreter). The work
-is in scripts/tradeoff_study/: grid.py (the grids, the run configurations), run.py (the runs and
+is in scripts/dev/tradeoff_study/: grid.py (the grids, the run configurations), run.py (the runs and
 their cache), analyse.py (accuracy, cost, orders, Pareto fronts), plots.py and report.py (runs.csv
 and the page); this file reads the options and calls them in that order.
 
@@ -49,7 +49,7 @@ def parse_args():
     parser.add_argument("--docs", default="docs")
     parser.add_argument("--report-only", action="store_true", help="use cached runs only")
     parser.add_argument("--rerun", action="store_true", help="ignore cached runs")
-    parser.add_argument("--command", default="scripts/tradeoff", help="shown in the report")
+    parser.add_argument("--command", default="scripts/dev/tradeoff", help="shown in the report")
     args = parser.parse_args()
     # the report names the command that regenerates it, runs included
     args.command = args.command.replace(" --report-only", "")

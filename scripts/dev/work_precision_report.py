@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The work-precision study per shipped scene, run by `scripts/work_precision`.
+"""The work-precision study per shipped scene, run by `scripts/dev/work_precision`.
 
 For each shipped scene (the built-in Tippe-Top, and urdf/<scene>.urdf with config/<scene>.yaml)
 it runs the headless `simulate` with both integrators over a range of time steps, and moreau2
@@ -769,10 +769,10 @@ def main():
                         help="where the PNGs go (default docs/; with --quick the --out folder, so "
                              "that a reduced study never replaces the figures of docs/)")
     parser.add_argument("--rerun", action="store_true", help="ignore cached runs")
-    parser.add_argument("--command", default="scripts/work_precision", help="for the header")
+    parser.add_argument("--command", default="scripts/dev/work_precision", help="for the header")
     parser.add_argument("--cpu", type=int, default=1, help="taskset core (-1: no pinning)")
     args = parser.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     args.out = args.out or os.path.join(root, "out", "work_precision")
     args.docs = args.docs or (args.out if args.quick else os.path.join(root, "docs"))
     os.makedirs(args.out, exist_ok=True)

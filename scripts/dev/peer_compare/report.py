@@ -61,7 +61,7 @@ def header(st, w):
     start, minutes = facts["start"], facts["minutes"]
     w("# Peer engines: the Tippe-Top in ODE, MuJoCo and Bullet")
     w("")
-    w("Written by `scripts/compare` (do not edit by hand: rerun it). Measured "
+    w("Written by `scripts/dev/compare` (do not edit by hand: rerun it). Measured "
       f"{start:%Y-%m-%d} with")
     w("")
     w(f"    {args.command}")
@@ -525,27 +525,27 @@ def reproducing(st, w):
     args = st.args
     w(f"    {args.command}")
     w(f"{'':42}# as above ({max(1, round(minutes))} min here)")
-    if args.command != "scripts/compare":
-        w("    scripts/compare                       # the defaults: N up to 1024, 8 s runs, a 2 s")
+    if args.command != "scripts/dev/compare":
+        w("    scripts/dev/compare                   # the defaults: N up to 1024, 8 s runs, a 2 s")
         w("                                          # crowd (about 35 min here)")
-    w("    scripts/compare --quick               # 1 round, N = 1 4 16, 0.5 s per scaling and crowd run,")
+    w("    scripts/dev/compare --quick           # 1 round, N = 1 4 16, 0.5 s per scaling and crowd run,")
     w("                                          # into build-peers/compare_quick.md, not here")
-    w("    scripts/compare --only scaling crowd --n 1 1024   # N = 1 and 1024 and the crowd alone,")
-    w("    scripts/compare --crowd-only --crowd-duration 8   # the crowd alone; both into")
+    w("    scripts/dev/compare --only scaling crowd --n 1 1024   # N = 1 and 1024 and the crowd alone,")
+    w("    scripts/dev/compare --crowd-only --crowd-duration 8   # the crowd alone; both into")
     w("                                          # build-peers/compare_partial.md, not here")
-    w("    scripts/compare --repetitions 3 --n 1 16 256 --scaling-duration 1")
-    w("    scripts/compare --from-log build-peers/compare_runs.jsonl   # no runs: this page again")
+    w("    scripts/dev/compare --repetitions 3 --n 1 16 256 --scaling-duration 1")
+    w("    scripts/dev/compare --from-log build-peers/compare_runs.jsonl   # no runs: this page again")
     w("                                          # from the runs the last full call logged")
     w("")
-    w("`scripts/compare` installs `libode-dev`, `libmujoco-dev` and `libbullet-dev` with apt if "
+    w("`scripts/dev/compare` installs `libode-dev`, `libmujoco-dev` and `libbullet-dev` with apt if "
       "missing, builds `bench/peers` (its own CMake project, not part of the package) into "
       "`build-peers/` (or `$PEERS_BUILD_DIR`), builds `simulate` if it is missing or older than "
       "the sources (the target alone, `-j1`, in the build directory of `scripts/build`, or "
-      "`$BUILD_DIR`) and runs `scripts/compare_report.py` (its parts in `scripts/peer_compare/`: "
+      "`$BUILD_DIR`) and runs `scripts/dev/compare_report.py` (its parts in `scripts/dev/peer_compare/`: "
       "`run.py`, `analyse.py`, `report.py`), which writes the N-top and crowd scenes into the "
       "peers' build directory (`scenes/`), every run into `build-peers/compare_runs.jsonl`, this "
       "page and the figure "
-      "(`scripts/compare --help` lists the options: `--only`, `--large-n`, `--large-n-duration`, "
+      "(`scripts/dev/compare --help` lists the options: `--only`, `--large-n`, `--large-n-duration`, "
       "`--large-n-repetitions`, `--crowd-n`, `--crowd-duration`, …). One peer run by hand: "
       "`build-peers/mujoco_tops --setting elliptic --n 1 --duration 8` prints one JSON line "
       "(engine, settings, N, steps, CPU s, inverts, event times, energies, peak RSS); "
