@@ -16,7 +16,9 @@
 // publishes from when its topic is advertised. A deleted collision's topic is not unadvertised
 // but kept for the next collision of that name (simulation_node.h, kept_wrench_pubs_): roscpp
 // unregisters a topic with the master while holding the lock every publish takes.
+#include <ros/master.h>
 #include <ros/names.h>
+#include <ros/this_node.h>
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +38,17 @@ namespace {
 
 std::string InSeconds(std::chrono::milliseconds duration) {
   return std::to_string(duration.count() / 1000) + " s";
+}
+
+// A parameter call to the master, made until the master answers: roscpp's ros::param calls other
+// than set give up at once on a failed connection (e.g. one the master dropped while stopped)
+// and report it as a missing parameter. Called on master_calls_ only (it may wait for ever).
+// Returns whether the master took the call (false: also "not set"); `value` its payload.
+bool AskMaster(const char* method, const std::string& key, XmlRpc::XmlRpcValue* value) {
+  XmlRpc::XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  request[1] = key;
+  return ros::master::execute(method, request, response, *value, /*wait_for_master=*/true);
 }
 
 }  // namespace
@@ -62,12 +75,12 @@ std::string SimulationNode::ModelNamespace(const std::string& model_name,
             ": must be the model's own namespace " + own + " or one under it (never /, a global "
             "parameter or another model's namespace)");
   const std::string description = ros::names::append(ns, "robot_description");
-  Check(!nh_.hasParam(description),
+  XmlRpc::XmlRpcValue value;
+  Check(AskMaster("hasParam", description, &value) && !static_cast<bool>(value),
         "the parameter " + description + " exists already (set by someone else: deleting the "
         "model would remove it); choose another robot_namespace");
-  XmlRpc::XmlRpcValue value;
   for (std::string part = ns; part.size() > 1; part = part.substr(0, part.rfind('/'))) {
-    if (!nh_.getParam(part, value)) continue;
+    if (!AskMaster("getParam", part, &value)) continue;
     Check(value.getType() == XmlRpc::XmlRpcValue::TypeStruct,
           "the parameter " + part + " holds a value, not a namespace: setting " + description +
               " would replace it; choose another model_name or robot_namespace");
@@ -178,7 +191,8 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
   // the master, without the simulator mutex (as in OnSpawnUrdfModel)
   const bool answered = master_calls_.Run(
       [this, description, topics = std::move(topics)]() mutable {
-        if (!description.empty()) nh_.deleteParam(description);
+        XmlRpc::XmlRpcValue unused;
+        if (!description.empty()) AskMaster("deleteParam", description, &unused);
         AdvertiseWrenches(&topics);  // the removed topics kept (beyond the bound: unadvertised)
       },
       kMasterTimeout);

@@ -123,9 +123,29 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       p.advertiseService("set_model_state", &SimulationNode::OnSetModelState, this),
       p.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this),
       p.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this),
-      p.advertiseService("spawn_urdf_model", &SimulationNode::OnSpawnUrdfModel, this),
-      p.advertiseService("delete_model", &SimulationNode::OnDeleteModel, this),
   };
+
+  {
+    // spawns and deletes on a queue and thread of their own: one runs at a time anyway
+    // (world_mutex_), and one that waits for the master (up to kMasterTimeout) never holds a
+    // thread of the spinner that serves the other services
+    ros::AdvertiseServiceOptions spawn;
+    spawn.init<SpawnModel::Request, SpawnModel::Response>(
+        "spawn_urdf_model", [this](SpawnModel::Request& req, SpawnModel::Response& res) {
+          return OnSpawnUrdfModel(req, res);
+        });
+    spawn.callback_queue = &world_queue_;
+    services_.push_back(p.advertiseService(spawn));
+    ros::AdvertiseServiceOptions remove;
+    remove.init<DeleteModel::Request, DeleteModel::Response>(
+        "delete_model", [this](DeleteModel::Request& req, DeleteModel::Response& res) {
+          return OnDeleteModel(req, res);
+        });
+    remove.callback_queue = &world_queue_;
+    services_.push_back(p.advertiseService(remove));
+    world_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &world_queue_);
+    world_spinner_->start();
+  }
 
   {
     ros::AdvertiseServiceOptions step;
@@ -174,6 +194,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
 
 SimulationNode::~SimulationNode() {
   if (step_spinner_) step_spinner_->stop();  // a running ~step ends at its next chunk (ros::ok)
+  if (world_spinner_) world_spinner_->stop();  // a running spawn or delete ends first
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;

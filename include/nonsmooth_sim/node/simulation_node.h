@@ -278,6 +278,9 @@ class SimulationNode {
   /// other) never holds a thread of the node's spinner, so the other services keep answering
   ros::CallbackQueue step_queue_;
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;
+  /// ~spawn_urdf_model's and ~delete_model's queue and thread (one at a time, world_mutex_)
+  ros::CallbackQueue world_queue_;
+  std::unique_ptr<ros::AsyncSpinner> world_spinner_;
 
   /// the master calls of spawns and deletes (model_services.cpp): destroyed before the members
   /// above, which its queued calls use, after the integrator has stopped
