@@ -227,14 +227,6 @@ Incline RunIncline(double mu) {
   Incline r;
   Eigen::Vector3d at_50ms = Eigen::Vector3d::Zero();
   while (sim.time() < 0.5 && run.finite()) {
-    if (sim.time() > 0.3245 && sim.time() < 0.3256 && mu < 0.3) {
-      ContactGeometry g[kMaxPairContacts];
-      const Eigen::Isometry3d pb = BodyPose(sim.state()[0]);
-      const int n = scene.collision_table.Collide(scene.colliders[1].shape, scene.colliders[1].pose, scene.colliders[0].shape, pb, 1e-3, g);
-      std::printf("DEBUG t %.4f n %d contacts %zu:", sim.time(), n, sim.contacts().size());
-      for (int k = 0; k < n; ++k) std::printf(" [f%d %.3e]", g[k].feature, g[k].gap);
-      std::printf("  incl %.3e\n", std::acos(std::min(1.0, (sim.state()[0].orientation * Eigen::Vector3d::UnitZ()).dot(normal))));
-    }
     run.Step();
     const BodyState& b = sim.state()[0];
     const double vn = std::abs(b.linear_velocity.dot(normal));
