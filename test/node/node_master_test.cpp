@@ -215,6 +215,12 @@ TEST_F(Master, AMasterThatDoesNotAnswerInTimeIsReportedAndLeavesTheWorldConsiste
   ASSERT_TRUE(nh_.getParam("/late/robot_description", description));
   GetWorldProperties before;
   ASSERT_TRUE(world.call(before));
+  // every persistent connection made before the stop (a first call looks the service up at the
+  // master): a delete of an unknown model, refused, connects `remove`
+  DeleteModel unknown;
+  unknown.request.model_name = "no_such_model";
+  ASSERT_TRUE(remove.call(unknown));
+  ASSERT_FALSE(unknown.response.success);
 
   DeleteModel deleted;
   deleted.request.model_name = "late";
