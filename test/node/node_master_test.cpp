@@ -11,6 +11,7 @@
 //   at least 5 times while both are outstanding, median under 100 ms. Before, each took one of
 //   the spinner's two threads and ~get_state waited for a step call to end.
 #include <gtest/gtest.h>
+#include <dirent.h>
 #include <signal.h>
 #include <sys/types.h>
 
@@ -47,13 +48,41 @@ int MasterPid() {
   return static_cast<int>(payload);
 }
 
+// Whether every thread of process `pid` is stopped (state T in /proc/<pid>/task/<tid>/stat).
+bool AllThreadsStopped(int pid) {
+  const std::string tasks = "/proc/" + std::to_string(pid) + "/task";
+  DIR* dir = opendir(tasks.c_str());
+  if (dir == nullptr) return false;
+  bool all = true;
+  while (const dirent* entry = readdir(dir)) {
+    if (entry->d_name[0] == '.') continue;
+    std::ifstream stat(tasks + "/" + entry->d_name + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    const std::size_t name_end = line.rfind(')');  // "<tid> (<name>) <state> ..."
+    if (name_end == std::string::npos || name_end + 2 >= line.size()) continue;  // gone
+    if (line[name_end + 2] != 'T' && line[name_end + 2] != 't') {
+      all = false;
+      break;
+    }
+  }
+  closedir(dir);
+  return all;
+}
+
 // Stops the master for at most `seconds` of wall time: a watchdog continues it then even if the
 // test is stuck in a call that waits for the master (the code before: the node waited for the
-// master under its mutex, the test for the node), and so does every way out.
+// master under its mutex, the test for the node), and so does every way out. The constructor
+// returns once every thread of the master's process has stopped: kill() returns before that, and
+// a master thread still running answered a call made right after it (1 run in 6).
 class StoppedMaster {
  public:
   StoppedMaster(int pid, double seconds) : pid_(pid) {
     stopped_ = kill(pid_, SIGSTOP) == 0;
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(1.0);
+    while (stopped_ && !AllThreadsStopped(pid_) && ros::WallTime::now() < give_up) {
+      ros::WallDuration(0.001).sleep();
+    }
     watchdog_ = std::thread([this, seconds] {
       const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
       while (!continued_ && ros::WallTime::now() < end) ros::WallDuration(0.005).sleep();
