@@ -586,7 +586,7 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     const Scene& scene = world_->sim().scene();
     for (const world::LostBody& lost : world::FindLostBodies(scene, world_->sim().state())) {
       snapshot_.lost.push_back(scene.bodies[static_cast<std::size_t>(lost.body)].name + " " +
-                               world::DescribeLostBody(scene, lost));
+                               world::DescribeLostBody(lost));
     }
   }
   for (const std::string& lost : snapshot_.lost) {

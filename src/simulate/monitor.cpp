@@ -121,7 +121,7 @@ std::vector<LostBodyRecord> RunMonitor::CheckLostBodies(double t, const Simulato
     const auto seen = std::find_if(summary_.lost_bodies.begin(), summary_.lost_bodies.end(),
                                    [&](const LostBodyRecord& r) { return r.name == name; });
     if (seen != summary_.lost_bodies.end()) continue;
-    found.push_back({name, t, world::DescribeLostBody(scene, lost)});
+    found.push_back({name, t, world::DescribeLostBody(lost)});
     summary_.lost_bodies.push_back(found.back());
   }
   return found;

@@ -10,12 +10,14 @@
 namespace nonsmooth_sim::world {
 namespace {
 
-// The radius about the centre of mass that holds every collider of `body` (-1: none).
-double BodySize(const Scene& scene, int body) {
-  double size = -1.0;
+// Per body, the radius about its centre of mass that holds all its colliders (-1: none), in one
+// pass over the colliders.
+std::vector<double> BodySizes(const Scene& scene) {
+  std::vector<double> size(scene.bodies.size(), -1.0);
   for (const Collider& c : scene.colliders) {
-    if (c.body != body) continue;
-    size = std::max(size, c.pose.translation().norm() + BoundingRadius(c.shape));
+    if (c.body < 0 || static_cast<std::size_t>(c.body) >= size.size()) continue;
+    double& s = size[static_cast<std::size_t>(c.body)];
+    s = std::max(s, c.pose.translation().norm() + BoundingRadius(c.shape));
   }
   return size;
 }
@@ -43,30 +45,31 @@ std::vector<LostBody> FindLostBodies(const Scene& scene, const std::vector<BodyS
   const bool can_fall = !statics.empty() && !plane && g > 0.0;
   const Eigen::Vector3d up = g > 0.0 ? Eigen::Vector3d(-scene.gravity / g)
                                      : Eigen::Vector3d(Eigen::Vector3d::Zero());
+  const std::vector<double> sizes = BodySizes(scene);
   std::vector<LostBody> lost;
   for (std::size_t b = 0; b < scene.bodies.size() && b < state.size(); ++b) {
     const int body = static_cast<int>(b);
-    const double size = BodySize(scene, body);
+    const double size = sizes[b];
     if (size < 0.0) {
-      lost.push_back({body, LostBody::Why::kNoCollider});
+      lost.push_back({body, LostBody::Why::kNoCollider, 0.0});
       continue;
     }
     const Eigen::Vector3d& r = state[b].position;
     if (can_fall && std::all_of(statics.begin(), statics.end(), [&](const Collider* c) {
           return Below(*c, r, size, up);
         })) {
-      lost.push_back({body, LostBody::Why::kBelowEveryStaticCollider});
+      lost.push_back({body, LostBody::Why::kBelowEveryStaticCollider, size});
     }
   }
   return lost;
 }
 
-std::string DescribeLostBody(const Scene& scene, const LostBody& lost) {
+std::string DescribeLostBody(const LostBody& lost) {
   if (lost.why == LostBody::Why::kNoCollider) {
     return "has no collision: it never touches anything";
   }
   char size[32];
-  std::snprintf(size, sizeof size, "%.3g", BodySize(scene, lost.body));
+  std::snprintf(size, sizeof size, "%.3g", lost.size);
   return std::string("is more than its size (") + size +
          " m) below every static collider: fallen off the world, it touches nothing again";
 }

@@ -99,12 +99,12 @@ TEST(LostBodies, ABodyWithoutAColliderIsLostWithOrWithoutStaticColliders) {
   ASSERT_EQ(lost.size(), 1u);
   EXPECT_EQ(lost[0].body, 1);
   EXPECT_EQ(lost[0].why, LostBody::Why::kNoCollider);
-  EXPECT_EQ(DescribeLostBody(scene, lost[0]), "has no collision: it never touches anything");
+  EXPECT_EQ(DescribeLostBody(lost[0]), "has no collision: it never touches anything");
   // below a finite static collider by far: the ball too
   scene.colliders.push_back(
       Static("ledge", Shape::Box(Eigen::Vector3d(0.5, 0.5, 0.05)), kIdentity));
   EXPECT_EQ(FindLostBodies(scene, state).size(), 2u);
-  EXPECT_EQ(DescribeLostBody(scene, FindLostBodies(scene, state)[0]),
+  EXPECT_EQ(DescribeLostBody(FindLostBodies(scene, state)[0]),
             "is more than its size (0.05 m) below every static collider: fallen off the world, "
             "it touches nothing again");
 }

@@ -23,6 +23,7 @@ struct LostBody {
   enum class Why { kNoCollider, kBelowEveryStaticCollider };
   int body = 0;
   Why why = Why::kNoCollider;
+  double size = 0.0;  ///< [m] the radius about S that holds its colliders (below every collider)
 };
 
 /// The lost bodies of `scene` in `state` (one per body), in body order.
@@ -30,7 +31,7 @@ std::vector<LostBody> FindLostBodies(const Scene& scene, const std::vector<BodyS
 
 /// "has no collision: it never touches anything" or "is more than its size (0.05 m) below every
 /// static collider: fallen off the world, it touches nothing again".
-std::string DescribeLostBody(const Scene& scene, const LostBody& lost);
+std::string DescribeLostBody(const LostBody& lost);
 
 }  // namespace nonsmooth_sim::world
 
