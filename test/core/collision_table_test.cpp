@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision_test_util.h"
+#include "dynamics_scenes.h"
 #include "nonsmooth_sim/core/collision/capsule_capsule.h"
 #include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/collision/plane_box.h"
@@ -170,17 +171,7 @@ TEST(CollisionTable, CollideCallsThePairFunction) {
 // one process (a process-wide table would give both the same pairs).
 TEST(CollisionTable, TwoSimulatorsWithDifferentTablesDoNotAffectEachOther) {
   constexpr double kRadius = 0.05;  // [m]
-  Scene with_pair;
-  RigidBody ball;
-  ball.name = "ball";
-  ball.mass = 0.2;
-  ball.inertia = Eigen::Matrix3d::Identity() * (0.4 * ball.mass * kRadius * kRadius);
-  with_pair.bodies = {ball};
-  with_pair.colliders = {test::SphereCollider("ball", 0, Eigen::Vector3d::Zero(), kRadius, {})};
-  test::AddGround(&with_pair);
-  BodyState resting;
-  resting.position = Eigen::Vector3d(0.0, 0.0, kRadius);  // touching: gap 0
-  with_pair.initial_state = {resting};
+  const Scene with_pair = test::BallScene(kRadius, /*height=*/0.0, /*restitution=*/0.0, /*mu=*/0.3);
   Scene without_pair = with_pair;
   without_pair.collision_table.Register(ShapeType::kPlane, ShapeType::kSphere, nullptr);
 
