@@ -22,11 +22,19 @@ std::vector<BodyState> Normalized(std::vector<BodyState> state) {
 
 // ½m|v_S|² + ½ωᵀΘω - m g·r_S of one body, with the operations of MechanicalEnergy (scene.cpp), so
 // that a sum of these that is finite is an Energy() that is finite.
+double KineticEnergy(const RigidBody& body, const Eigen::Vector3d& linear,
+                     const Eigen::Vector3d& angular) {
+  return 0.5 * body.mass * linear.squaredNorm() + 0.5 * angular.dot(body.inertia * angular);
+}
+// the kinetic part first, so that a lift (which keeps the velocities) needs only the potential
+double EnergyFromKinetic(double kinetic, const RigidBody& body, const Eigen::Vector3d& gravity,
+                         const Eigen::Vector3d& position) {
+  return kinetic - body.mass * gravity.dot(position);
+}
 double BodyEnergy(const RigidBody& body, const Eigen::Vector3d& gravity,
                   const Eigen::Vector3d& position, const Eigen::Vector3d& linear,
                   const Eigen::Vector3d& angular) {
-  return 0.5 * body.mass * linear.squaredNorm() + 0.5 * angular.dot(body.inertia * angular) -
-         body.mass * gravity.dot(position);
+  return EnergyFromKinetic(KineticEnergy(body, linear, angular), body, gravity, position);
 }
 
 // The two colliders of a contact name "<collider>/<collider>": the split at a '/' where both
@@ -106,12 +114,6 @@ void Simulator::Step(StepStatistics* out) {
   }
   // (12) the index set at q_M with W, and the islands of bodies it links
   contact_pipeline_.FindContacts(model_, state_, &data_, &stats);
-  for (std::size_t k = 0; k < data_.closed_count; ++k) {
-    const ClosedContact& c = data_.closed[k];
-    if (c.memory->closed_step != data_.step - 1) {
-      stats.new_contact_depth = std::max(stats.new_contact_depth, -c.report.gap);
-    }
-  }
   islands_.Build(data_.closed.data(), data_.closed_count);
   stats.islands = static_cast<int>(islands_.islands().size());
   // (16), (17) per island; every closed contact belongs to an island, whose solve writes its flags
@@ -131,9 +133,9 @@ void Simulator::Step(StepStatistics* out) {
   const Scene& scene = model_.scene;
   double energy = 0.0;
   for (std::size_t b = 0; finite && b < state_.size(); ++b) {
-    const BodyStep& w = data_.body[b];
-    energy += BodyEnergy(scene.bodies[b], scene.gravity, w.position_end, w.linear_end,
-                         w.angular_end);
+    BodyStep& w = data_.body[b];
+    w.kinetic_end = KineticEnergy(scene.bodies[b], w.linear_end, w.angular_end);
+    energy += EnergyFromKinetic(w.kinetic_end, scene.bodies[b], scene.gravity, w.position_end);
   }
   if (!finite || !std::isfinite(energy)) {
     // the step is not taken: state, time and contact report stay as they were (SetState clears
@@ -167,8 +169,8 @@ void Simulator::Step(StepStatistics* out) {
     for (std::size_t b = 0; moved && corrected_finite && b < state_.size(); ++b) {
       const BodyState& s = state_[b];
       corrected_finite = AllFinite(s.position) && AllFinite(s.orientation.coeffs());
-      energy += BodyEnergy(scene.bodies[b], scene.gravity, s.position, s.linear_velocity,
-                           s.angular_velocity);
+      energy += EnergyFromKinetic(data_.body[b].kinetic_end, scene.bodies[b], scene.gravity,
+                                  s.position);
     }
     if (!corrected_finite || !std::isfinite(energy)) {
       for (std::size_t b = 0; b < state_.size(); ++b) {

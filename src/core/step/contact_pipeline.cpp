@@ -75,7 +75,12 @@ void ContactPipeline::FindContacts(const Model& model, const std::vector<BodySta
   for (const auto& [first, second] : pairs_) AddPairContacts(model, state, first, second, data);
   stats->closed_contacts = static_cast<int>(data->closed_count);
   for (std::size_t i = 0; i < data->closed_count; ++i) {
-    stats->max_penetration = std::max(stats->max_penetration, -data->closed[i].report.gap);
+    const ClosedContact& c = data->closed[i];
+    stats->max_penetration = std::max(stats->max_penetration, -c.report.gap);
+    // a contact not closed in the last step: found this deep, a part of a step late
+    if (c.memory->closed_step != data->step - 1) {
+      stats->new_contact_depth = std::max(stats->new_contact_depth, -c.report.gap);
+    }
   }
 }
 

@@ -36,6 +36,7 @@ struct BodyStep {
   Eigen::Quaterniond orientation_end;  ///< p_E, normalised
   /// Δt·A(p_M)ᵀτ: the external torque's impulse in K [N m s], valid if `external`
   Eigen::Vector3d angular_external;
+  double kinetic_end = 0.0;  ///< ½m|v_E|² + ½ω_EᵀΘω_E [J] (the lift keeps the velocities)
   bool external = false;  ///< an external wrench acts on the body in this step
 };
 
