@@ -57,6 +57,11 @@ if(CATKIN_ENABLE_TESTING)
   add_dependencies(tests node_conversion_test)
   gtest_discover_tests(node_conversion_test DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60)
 
+  # node_tests: what the node's rostests and bag tests run (the node, simulate, the messages, each
+  # rostest's gtest node), and nothing else: scripts/test --tsan builds only this
+  add_custom_target(node_tests)
+  add_dependencies(node_tests nonsmooth_sim_node simulate ${PROJECT_NAME}_generate_messages)
+
   # rostests: a gtest node next to the node under test, started from the launch file.
   function(nonsmooth_sim_rostest name)
     add_rostest_gtest(${name} test/node/${name}.test test/node/${name}.cpp)
@@ -67,6 +72,7 @@ if(CATKIN_ENABLE_TESTING)
       NONSMOOTH_SIM_NODE_EXECUTABLE="${NONSMOOTH_SIM_BIN_DIR}/nonsmooth_sim_node")
     set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
     add_dependencies(${name} nonsmooth_sim_node)
+    add_dependencies(node_tests ${name})
     set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_${name}.test PROPERTIES
       ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)
   endfunction()

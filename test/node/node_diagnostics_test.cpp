@@ -23,7 +23,9 @@ TEST(NodeDiagnostics, RealTimeFactorAndEndOfRunLineCoverTheRunOnly) {
   ros::NodeHandle nh;
   Recorder<diagnostic_msgs::DiagnosticArray> diagnostics(nh, "/diagnostics");
   Recorder<rosgraph_msgs::Log> log(nh, "/rosout");  // the node publishes its log lines here
-  ASSERT_TRUE(WaitFor([&] { return log.Connected() && diagnostics.Connected(); }, 20.0));
+  // /rosout's publishers: this test node itself and the node under test; wait for both, or the
+  // end-of-run line may go out before the node's connection (seen under ThreadSanitizer)
+  ASSERT_TRUE(WaitFor([&] { return log.Publishers() >= 2 && diagnostics.Connected(); }, 20.0));
   Call<std_srvs::Empty>(nh, "/nonsmooth_sim/unpause_physics");
 
   // until a period after the run (at ~duration, paused, nothing ran in it)

@@ -9,6 +9,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <mutex>
@@ -151,6 +152,8 @@ class Recorder {
         timeout);
   }
   bool Connected() const { return sub_.getNumPublishers() > 0; }
+  /// Publishers connected, this node's own included (a topic it also publishes, e.g. /rosout).
+  std::uint32_t Publishers() const { return sub_.getNumPublishers(); }
 
  private:
   ros::Subscriber sub_;
