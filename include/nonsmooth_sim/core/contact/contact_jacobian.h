@@ -15,6 +15,9 @@
 //   γ = Σ_sides sign (L v_S + J K_ω),   W Λ on a side = sign (LᵀΛ, JᵀΛ),
 //   G_ij = W_iᵀ M⁻¹ W_j = Σ over sides s of i and t of j on the same body
 //          sign_s sign_t (L_i L_jᵀ / m + J_s Θ⁻¹ J_tᵀ)                                     (16)
+// Rolling resistance adds two rows per side (ContactRollingRows): the rolling percussion
+// Λ_R = (Λ_R1, Λ_R2) is the torque Λ_R1 t1 + Λ_R2 t2 on B and its opposite on A, so its rows are
+// w_R = ± [0; Aᵀt1], ± [0; Aᵀt2] and γ_R the angular velocity of B minus that of A about t1, t2.
 // With the ground as A this is the sphere–ground kinematics of the Tippe-Top: n = ẑ, t1 = x̂,
 // t2 = ŷ, one side (B) with sign +1.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_CONTACT_JACOBIAN_H_
@@ -62,6 +65,16 @@ inline Eigen::Matrix<double, 4, 3> ContactAngularRows(const ContactFrame& frame,
   angular.row(kTangent2) = r_sp.cross(rotation.transpose() * frame.tangent2);
   angular.row(kDrilling) = n_body;
   return angular;
+}
+
+/// The rolling rows of one side, in K: Aᵀt1, Aᵀt2 (a torque about each tangent); sign times
+/// these rows applied to K_ω is the side's part of γ_R.
+inline Eigen::Matrix<double, 2, 3> ContactRollingRows(const ContactFrame& frame,
+                                                      const Eigen::Matrix3d& rotation) {
+  Eigen::Matrix<double, 2, 3> rows;
+  rows.row(0) = rotation.transpose() * frame.tangent1;
+  rows.row(1) = rotation.transpose() * frame.tangent2;
+  return rows;
 }
 
 /// Sets J of a side and J R with it (the side's body's inertia).
