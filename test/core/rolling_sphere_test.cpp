@@ -210,6 +210,8 @@ TEST_P(RollingSphere, DeceleratesAtFiveSeventhsMuRGOverRStopsAndRests) {
   }
   ASSERT_GE(stopped_at, 0.0);
   EXPECT_NEAR(stopped_at, stop, 1.5 * kDt);
+  RecordProperty(std::string("stop_time_") + std::string(FrictionSetName(set)),
+                 Scientific(stopped_at) + " s, closed form " + Scientific(stop) + " s");
   EXPECT_GE(steps * kDt - stopped_at, 1.0);
 }
 

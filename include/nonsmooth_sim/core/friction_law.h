@@ -74,9 +74,6 @@ struct ContactLaw {
   double rbar = 0.0;         ///< average friction radius R̄ = 3πR/16 (50) [m], ≥ 0; 0 = no drilling
   double restitution = 0.0;  ///< Newton's ε (14), in [0, 1]
   FrictionSet friction_set = FrictionSet::kSphere;
-  /// rolling-resistance length μ_r [m], ≥ 0: the rolling torque is bounded by μ_rΛ_N (laws with
-  /// a rolling set only); 0 = no rolling resistance
-  double rolling = 0.0;
 };
 
 /// The coordinates a law's set is iterated in (the table above).
