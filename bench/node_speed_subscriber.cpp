@@ -1,4 +1,4 @@
-// node_speed_subscriber: the subscriber of scripts/node-speed. Subscribes to /tf and
+// node_speed_subscriber: the subscriber of scripts/dev/node-speed. Subscribes to /tf and
 // /nonsmooth_sim/contacts with queues large enough that nothing is dropped (every message is
 // deserialized, as in a real consumer), counts the samples (stamps, steps) that arrive and
 // prints the counts on shutdown (SIGINT): "received tf <n> contacts <m>". Not a test and not a

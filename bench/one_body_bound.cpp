@@ -26,7 +26,7 @@
 #include <limits>
 #include <vector>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/contact_solver.h"
@@ -95,8 +95,9 @@ class OneBodyOnGround {
     return pose;
   }
   int CollideWithGround(int k, const Eigen::Isometry3d& pose, double margin, ContactGeometry* out) const {
-    return Collide(scene_.colliders[kTippeTopGround].shape, ground_pose_,
-                   scene_.colliders[static_cast<std::size_t>(k)].shape, pose, margin, out);
+    return scene_.collision_table.Collide(scene_.colliders[kTippeTopGround].shape, ground_pose_,
+                                          scene_.colliders[static_cast<std::size_t>(k)].shape, pose,
+                                          margin, out);
   }
 
   Scene scene_;

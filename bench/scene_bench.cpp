@@ -1,6 +1,6 @@
 // One step of each shipped scene (urdf/<scene>.urdf with config/<scene>.yaml): ns per step and
 // closed contacts and solver iterations per step, after a warm-up into the scene's typical
-// contact phase. Timing lives here, never in the tests. Run through scripts/bench.
+// contact phase. Timing lives here, never in the tests. Run through scripts/dev/bench.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -19,7 +19,9 @@ constexpr double kWarmUp = 0.2;
 
 Scene LoadShipped(const std::string& name) {
   const std::string root = NONSMOOTH_SIM_SOURCE_DIR;
-  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(root + "/urdf/" + name + ".urdf");
+  scene_io::UrdfSceneOptions options;
+  RegisterFclPairs(&options.collision_table);  // as simulate and the node load
+  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(root + "/urdf/" + name + ".urdf", options);
   const std::string yaml = root + "/config/" + name + ".yaml";
   // a scene without a config file starts at its URDF pose
   if (std::filesystem::exists(yaml)) {
@@ -29,7 +31,6 @@ Scene LoadShipped(const std::string& name) {
 }
 
 void BM_SceneStep(benchmark::State& state, const char* name) {
-  RegisterFclPairs();
   Simulator sim(LoadShipped(name), SimulatorOptions{});
   StepStatistics stats;
   const long warm_up = static_cast<long>(kWarmUp / sim.options().time_step);

@@ -1,6 +1,7 @@
 # FCL adapter (include/nonsmooth_sim/collision_fcl): the narrow phase of the shape pairs without a
-# closed form, by FCL. A library of its own so that the core stays Eigen-only; `simulate` and the
-# node register its pairs at start-up. Its tests (test/collision_fcl) are in cmake/tests.cmake.
+# closed form, by FCL. A library of its own so that the core stays Eigen-only; `simulate`, the
+# node, the fuzz targets and the benchmarks register its pairs into their scenes' collision tables
+# (RegisterFclPairs). Its tests (test/collision_fcl) are in cmake/tests.cmake.
 
 file(GLOB NONSMOOTH_SIM_COLLISION_FCL_SOURCES CONFIGURE_DEPENDS
      ${PROJECT_SOURCE_DIR}/src/collision_fcl/*.cpp)

@@ -1,4 +1,4 @@
-# Coverage-guided fuzzing with libFuzzer (test/fuzz, scripts/fuzz; docs/testing.md, "Fuzzing").
+# Coverage-guided fuzzing with libFuzzer (test/fuzz, scripts/dev/fuzz; docs/testing.md, "Fuzzing").
 # Off by default: with NONSMOOTH_SIM_FUZZ OFF this file defines nothing. With it ON (clang only)
 # it adds the fuzz executables, each built only on request (`cmake --build <dir> --target fuzz`):
 #
@@ -6,17 +6,17 @@
 #   scene_yaml_fuzz         bytes = initial-state YAML applied to shipped scenes, a few steps
 #   service_sequence_fuzz   bytes -> a sequence of the node's service requests against a Simulator
 #
-# The fuzzed code (core, scene loader, FCL pairs and the node's ROS-free initial conditions) is
+# The fuzzed code (core, scene loader, FCL pairs and the ROS-free world of world/) is
 # compiled once more here into an instrumented library of its own (coverage for libFuzzer,
 # AddressSanitizer, LeakSanitizer, UBSan; assertions on), so the regular libraries and every other
 # target stay exactly as without the option. Included last from CMakeLists.txt (the source lists
 # of the libraries are set by then).
-option(NONSMOOTH_SIM_FUZZ "Build the libFuzzer targets of test/fuzz (clang only; scripts/fuzz)" OFF)
+option(NONSMOOTH_SIM_FUZZ "Build the libFuzzer targets of test/fuzz (clang only; scripts/dev/fuzz)" OFF)
 
 if(NONSMOOTH_SIM_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "NONSMOOTH_SIM_FUZZ needs clang (libFuzzer), got ${CMAKE_CXX_COMPILER_ID}: "
-                        "configure with -DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz does)")
+                        "configure with -DCMAKE_CXX_COMPILER=clang++ (scripts/dev/fuzz does)")
   endif()
   # every sanitizer finding aborts (libFuzzer then writes the input as crash-<sha1>); -UNDEBUG
   # keeps Eigen's index and size assertions
@@ -28,7 +28,7 @@ if(NONSMOOTH_SIM_FUZZ)
     ${NONSMOOTH_SIM_CORE_SOURCES}
     ${NONSMOOTH_SIM_SCENE_IO_SOURCES}
     ${NONSMOOTH_SIM_COLLISION_FCL_SOURCES}
-    ${PROJECT_SOURCE_DIR}/src/node/initial_conditions.cpp)  # ROS-free: the node's ~reset checks
+    ${NONSMOOTH_SIM_WORLD_SOURCES})  # ROS-free: the world the node serves
   target_include_directories(nonsmooth_sim_fuzz_instrumented PUBLIC ${PROJECT_SOURCE_DIR}/include)
   target_compile_options(nonsmooth_sim_fuzz_instrumented PRIVATE
     -fsanitize=fuzzer-no-link ${NONSMOOTH_SIM_FUZZ_COMPILE})

@@ -11,7 +11,7 @@
 
 install(TARGETS simulate nonsmooth_sim_node node_speed_subscriber
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-install(TARGETS nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl nonsmooth_sim_ros
+install(TARGETS nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION}
@@ -20,5 +20,8 @@ install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_
 install(DIRECTORY launch urdf config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 # rosrun nonsmooth_sim scene_report.py ...; the shebang becomes the configured
 # PYTHON_EXECUTABLE (default /usr/bin/python3; cmake -DPYTHON_EXECUTABLE=... to change)
-catkin_install_python(PROGRAMS scripts/scene_report.py scripts/tradeoff_report.py
+catkin_install_python(PROGRAMS scripts/scene_report.py scripts/dev/tradeoff_report.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# tradeoff_report.py's modules, next to it
+install(DIRECTORY scripts/dev/tradeoff_study DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
+  FILES_MATCHING PATTERN "*.py")

@@ -6,24 +6,25 @@
 # The node: a library (URDF -> Scene, message conversion, the node class) and a tiny main.
 add_library(nonsmooth_sim_ros STATIC
   src/node/conversions.cpp
-  src/node/initial_conditions.cpp
   src/node/node_parameters.cpp
   src/node/node_services.cpp
   src/node/simulation_node.cpp
   src/node/world_services.cpp
-  src/node/model_services.cpp)
+  src/node/model_services.cpp
+  src/node/master_calls.cpp)
 # the message headers (<build>/devel/include) and catkin's come from include_directories() in
 # cmake/catkin.cmake
 target_include_directories(nonsmooth_sim_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
 target_link_libraries(nonsmooth_sim_ros PUBLIC
-  nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl ${catkin_LIBRARIES})
+  nonsmooth_sim_world nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_collision_fcl
+  ${catkin_LIBRARIES})
 add_dependencies(nonsmooth_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 add_executable(nonsmooth_sim_node src/node/main.cpp)
 target_link_libraries(nonsmooth_sim_node PRIVATE nonsmooth_sim_ros)
 set_target_properties(nonsmooth_sim_node PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${NONSMOOTH_SIM_BIN_DIR})
 
-# The counting subscriber of scripts/node-speed (a measurement tool, not a test).
+# The counting subscriber of scripts/dev/node-speed (a measurement tool, not a test).
 add_executable(node_speed_subscriber bench/node_speed_subscriber.cpp)
 target_link_libraries(node_speed_subscriber PRIVATE ${catkin_LIBRARIES})
 add_dependencies(node_speed_subscriber ${PROJECT_NAME}_generate_messages_cpp)
@@ -44,10 +45,10 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(tf2_ros REQUIRED)
 
-  # URDF conversion, initial conditions and message conversion: no master needed.
+  # URDF conversion, initial conditions, message conversion and the master calls' queue: no
+  # master needed.
   add_executable(node_conversion_test EXCLUDE_FROM_ALL
-    test/node/initial_conditions_test.cpp
-    test/node/conversions_test.cpp)
+    test/node/conversions_test.cpp test/node/master_calls_test.cpp)
   target_link_libraries(node_conversion_test PRIVATE nonsmooth_sim_ros GTest::gtest GTest::gtest_main)
   target_compile_definitions(node_conversion_test PRIVATE
     NONSMOOTH_SIM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -81,10 +82,21 @@ if(CATKIN_ENABLE_TESTING)
   nonsmooth_sim_rostest(node_spawn_test)
   nonsmooth_sim_rostest(node_fuzz_test)
   nonsmooth_sim_rostest(node_bounds_test)
+  # the launch files with a model of the user's own: scene.launch, and tippe_top.launch with the
+  # same test
+  nonsmooth_sim_rostest(node_launch_model_test)
+  nonsmooth_sim_rostest(node_fixed_links_test)
+  add_rostest(test/node/node_launch_model_tippe.test DEPENDENCIES node_launch_model_test)
+  set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_launch_model_tippe.test
+    PROPERTIES ENVIRONMENT "${NONSMOOTH_SIM_ROS_TEST_ENV}" TIMEOUT 120)
   nonsmooth_sim_rostest(node_master_test)
+  # the hammer stops sending after NONSMOOTH_SIM_HAMMER_SECONDS (60 s by default); longer runs by
+  # option (docs/testing.md)
+  set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_fuzz_test.test PROPERTIES
+    TIMEOUT 1500)
   # two 100 000-step calls one after the other: minutes under the sanitizers
   set_tests_properties(_ctest_${PROJECT_NAME}_rostest_test_node_node_master_test.test PROPERTIES
-    TIMEOUT 240)
+    TIMEOUT 300)
 
   # A bag recorded through the launch file (scripts/record), checked topic by topic.
   add_test(NAME node_bag_record_test

@@ -4,9 +4,12 @@
 include(${PROJECT_SOURCE_DIR}/cmake/gtests.cmake)
 
 nonsmooth_sim_add_gtests(DIR test/core LIBRARIES nonsmooth_sim_core)
-# "scene_io.<Suite>.<Test>" (the node has a urdf_scene_test of its own)
+# "scene_io.<Suite>.<Test>"
 nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
 nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collision_fcl)
+# the world on its own: "world.<Suite>.<Test>"
+nonsmooth_sim_add_gtests(DIR test/world PREFIX world LIBRARIES nonsmooth_sim_world
+                         nonsmooth_sim_collision_fcl)
 # An independent reference for bodies rolling without slipping (test/reference/rolling_reference.h:
 # Eigen and Boost.Odeint only, nothing of the core), for tests that hold the integrators to it
 # (#include "reference/rolling_reference.h"); its own checks are "reference.<Suite>.<Test>".
@@ -27,10 +30,23 @@ nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes LIBRARIES nonsmooth_sim_s
 add_test(NAME simulate_files_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_files_test.py
           $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300)
+# the sanitizer (if any) is passed on: a sanitizer's runtime cannot start under the test's
+# address-space limit, so the out-of-memory case is skipped in sanitized builds
+set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300
+  ENVIRONMENT "NONSMOOTH_SIM_SANITIZE=${NONSMOOTH_SIM_SANITIZE}")
+# `simulate` warns once for a body that can no longer touch anything and lists it in the summary
+add_test(NAME simulate_lost_bodies_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_lost_bodies_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_lost_bodies_test PROPERTIES TIMEOUT 300)
+# `simulate --schedule` runs the documented example and each event has its effect in the CSV
+add_test(NAME simulate_schedule_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_schedule_test PROPERTIES TIMEOUT 300)
 
 # ---------------------------------------------------------------------------------------------
-# Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/bench:
+# Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/dev/bench:
 # the core's pieces, the shape pairs (closed forms next to FCL), one step of each shipped scene.
 find_package(benchmark QUIET)
 file(GLOB NONSMOOTH_SIM_BENCH_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/bench/*_bench.cpp)

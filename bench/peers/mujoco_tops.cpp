@@ -22,8 +22,11 @@
 // peak RSS and grow with N^2.
 // With --scene crowd the tops of CrowdStartOf() between the four wall planes of CrowdWalls().
 //
-// Settings (--setting): elliptic (the default), pyramidal, or elliptic_condim3 (a check: elliptic
-// cone without torsional friction, condim 3).
+// Settings (--setting): elliptic (the default), pyramidal, elliptic_pgs (the elliptic cone solved
+// by PGS instead of Newton: the same convex problem, so the same physics up to the solvers'
+// tolerances; the faster of the two for one top), or elliptic_condim3 (a check: elliptic cone
+// without torsional friction, condim 3). Euler is MuJoCo's cheapest integrator; condim 4 is the
+// smallest that has torsional friction (6 adds rolling resistance, which ours does not have).
 #include <mujoco/mujoco.h>
 
 #include <unistd.h>
@@ -37,13 +40,13 @@ namespace {
 
 using namespace tippe_top;
 
-std::string ModelXml(const Args& a, bool elliptic, int condim) {
+std::string ModelXml(const Args& a, bool elliptic, int condim, const char* solver) {
   char buf[512];
   std::string xml = "<mujoco model=\"tippe_tops\">\n";
   std::snprintf(buf, sizeof buf,
                 "  <option timestep=\"%.17g\" gravity=\"0 0 %.17g\" cone=\"%s\" integrator=\"Euler\" "
-                "solver=\"Newton\"/>\n",
-                a.dt, -kGravity, elliptic ? "elliptic" : "pyramidal");
+                "solver=\"%s\"/>\n",
+                a.dt, -kGravity, elliptic ? "elliptic" : "pyramidal", solver);
   xml += buf;
   const int nconmax = (a.crowd() ? 4 : 2) * a.n + 64;
   const int rows = elliptic ? condim : 2 * (condim - 1);
@@ -99,14 +102,15 @@ TopState StateOf(const mjModel* m, const mjData* d, int i) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Args args = ParseArgs(argc, argv, {"elliptic", "pyramidal", "elliptic_condim3"});
+  const Args args = ParseArgs(argc, argv, {"elliptic", "pyramidal", "elliptic_condim3", "elliptic_pgs"});
   const bool elliptic = args.setting != "pyramidal";
   const int condim = args.setting == "elliptic_condim3" ? 3 : 4;
+  const char* solver = args.setting == "elliptic_pgs" ? "PGS" : "Newton";
 
   // MuJoCo 2.2 loads MJCF from a file
   char path[] = "/tmp/mujoco_tops_XXXXXX";
   const int fd = mkstemp(path);
-  const std::string xml = ModelXml(args, elliptic, condim);
+  const std::string xml = ModelXml(args, elliptic, condim, solver);
   if (fd < 0 || write(fd, xml.data(), xml.size()) != static_cast<ssize_t>(xml.size())) {
     std::fprintf(stderr, "mujoco_tops: cannot write %s\n", path);
     return 1;
@@ -166,7 +170,7 @@ int main(int argc, char** argv) {
       std::string(elliptic ? "elliptic cone" : "pyramidal cone") +
       (condim == 4 ? ", condim 4, friction 0.3 / torsional mu*Rbar / rolling 0"
                    : ", condim 3 (no torsional friction), friction 0.3") +
-      ", Newton, Euler, default solref/solimp";
+      ", " + solver + ", Euler, default solref/solimp";
   std::string extra = "\"max_contacts\": " + std::to_string(max_contacts) + ", \"nconmax\": " +
                       std::to_string(m->nconmax) + ", \"buffer_overflow\": " + (overflow ? "true" : "false");
   if (args.crowd()) extra += ", " + pairs.Json();

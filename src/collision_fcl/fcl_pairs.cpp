@@ -328,7 +328,7 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   return 1;
 }
 
-void RegisterFclPairs() {
+void RegisterFclPairs(CollisionTable* table) {
   constexpr ShapeType kPairs[][2] = {{ShapeType::kSphere, ShapeType::kEllipsoid},
                                      {ShapeType::kSphere, ShapeType::kCylinder},
                                      {ShapeType::kCapsule, ShapeType::kEllipsoid},
@@ -340,7 +340,7 @@ void RegisterFclPairs() {
                                      {ShapeType::kCylinder, ShapeType::kCylinder},
                                      {ShapeType::kCylinder, ShapeType::kBox},
                                      {ShapeType::kBox, ShapeType::kBox}};
-  for (const auto& pair : kPairs) RegisterCollideFunction(pair[0], pair[1], &CollideFcl);
+  for (const auto& pair : kPairs) table->Register(pair[0], pair[1], &CollideFcl);
 }
 
 }  // namespace nonsmooth_sim

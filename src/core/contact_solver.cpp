@@ -334,7 +334,7 @@ void ContactSolver::SolvePrevalidated(const BlockContactProblem& problem,
   } else {
     // several contacts: only after Gauss-Seidel, whose sweeps the block sweeps are (a Jacobi
     // scheme outside its convergence range, restarted near a solution that the sweeps have not
-    // reached, was seen to pass its stopping rule with the twelve feet of stability_test carrying
+    // reached, was seen to pass its stopping rule with the twelve feet of stability_parameters_test carrying
     // the wrong load)
     const int budget = options.max_iterations;
     const bool may_solve_directly = options.direct_solve && budget > kDirectSolveAfter &&

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 
 namespace nonsmooth_sim {
 namespace {
@@ -25,8 +25,8 @@ std::vector<Overlap> FindOverlaps(const Scene& scene, const std::vector<BodyStat
       const Collider& b = scene.colliders[j];
       if (a.body == b.body) continue;  // one body, or both static
       ContactGeometry points[kMaxPairContacts];
-      const int count =
-          Collide(a.shape, WorldPose(a, state), b.shape, WorldPose(b, state), 0.0, points);
+      const int count = scene.collision_table.Collide(a.shape, WorldPose(a, state), b.shape,
+                                                      WorldPose(b, state), 0.0, points);
       double depth = 0.0;
       for (int k = 0; k < count; ++k) depth = std::max(depth, -points[k].gap);
       if (depth > min_depth) {

@@ -5,7 +5,7 @@
 // meridian plane (ρ, z) = (||Λ_T||, |Λ_τ|)/s. In that plane the curve is P(u) = (β_T, k·β_τ) with
 // k = R̄ (the only shape parameter left).
 //
-// Facts used (checked by test/core/force_sets_test.cpp):
+// Facts used (checked by test/core/force_sets_coulomb_contensou_test.cpp):
 //  - (51)-(52) join C¹ at u = 1, and with the contact radius R_c = 16R̄/(3π) (50)
 //      db_τ/du = -u·R_c·db_T/du  on both branches,
 //    so the outward normal of the meridian curve at u is n ∝ (u·R_c, 1).
@@ -44,12 +44,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/force_sets.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 // Newton stops when its step is below this many ulps of the unknown.
 constexpr double kStepTolerance = 4.0 * kEpsilon;

@@ -19,10 +19,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "nonsmooth_sim/core/constants.h"
+
 namespace nonsmooth_sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {ShapeType::kPlane,    ShapeType::kSphere,
                                                        ShapeType::kCapsule,  ShapeType::kEllipsoid,

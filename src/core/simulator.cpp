@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "nonsmooth_sim/core/all_finite.h"
 #include "nonsmooth_sim/core/step/moreau_kinematics.h"
@@ -26,6 +27,19 @@ double BodyEnergy(const RigidBody& body, const Eigen::Vector3d& gravity,
                   const Eigen::Vector3d& angular) {
   return 0.5 * body.mass * linear.squaredNorm() + 0.5 * angular.dot(body.inertia * angular) -
          body.mass * gravity.dot(position);
+}
+
+// The two colliders of a contact name "<collider>/<collider>": the split at a '/' where both
+// halves are colliders (names of spawned models hold a '/' themselves: "m/a/m/b"); {-1, -1} if
+// none or the same collider twice.
+std::pair<int, int> ContactColliders(const Scene& scene, const std::string& name) {
+  for (std::size_t slash = name.find('/'); slash != std::string::npos;
+       slash = name.find('/', slash + 1)) {
+    const int first = FindCollider(scene, name.substr(0, slash));
+    const int second = first < 0 ? -1 : FindCollider(scene, name.substr(slash + 1));
+    if (first >= 0 && second >= 0 && first != second) return {first, second};
+  }
+  return {-1, -1};
 }
 
 }  // namespace
@@ -309,10 +323,8 @@ void Simulator::Restore(const Checkpoint& checkpoint) {
 FrictionSet Simulator::FrictionSetOf(const std::string& name) const {
   const int collider = FindCollider(model_.scene, name);
   if (collider >= 0) return model_.scene.colliders[static_cast<std::size_t>(collider)].law.friction_set;
-  const std::size_t slash = name.find('/');
-  const int first = slash == std::string::npos ? -1 : FindCollider(model_.scene, name.substr(0, slash));
-  const int second = slash == std::string::npos ? -1 : FindCollider(model_.scene, name.substr(slash + 1));
-  if (first < 0 || second < 0 || first == second) {
+  const auto [first, second] = ContactColliders(model_.scene, name);
+  if (first < 0) {
     throw std::invalid_argument("unknown contact \"" + name +
                                 "\": expected a collider name or \"<collider>/<collider>\"");
   }
@@ -336,9 +348,7 @@ void Simulator::SetFrictionSet(FrictionSet set, const std::string& name) {
                      model_.pair_sets.end());
   } else {
     FrictionSetOf(name);  // throws for an unknown name
-    const std::size_t slash = name.find('/');
-    const int a = FindCollider(model_.scene, name.substr(0, slash));
-    const int b = FindCollider(model_.scene, name.substr(slash + 1));
+    const auto [a, b] = ContactColliders(model_.scene, name);
     const std::pair<int, int> pair(std::min(a, b), std::max(a, b));
     bool found = false;
     for (auto& [p, s] : model_.pair_sets) {

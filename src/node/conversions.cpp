@@ -2,10 +2,8 @@
 #include "nonsmooth_sim/node/conversions.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "nonsmooth_sim/core/tippe_top.h"
 
@@ -89,59 +87,6 @@ ros::Time StampOf(double sim_time) {
   return t.isZero() ? ros::TIME_MIN : t;
 }
 
-std::string GraphName(const std::string& name) {
-  std::string out = name;
-  for (char& c : out) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
-  }
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out.front()))) out = "_" + out;
-  return out;
-}
-
-FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame) {
-  FrameNames names;
-  names.world = world_frame;
-  for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
-    if (scene.colliders[i].body == kWorld) continue;
-    names.slots.push_back(static_cast<int>(i));
-    names.contacts.push_back(GraphName(scene.colliders[i].name) + "_contact");
-  }
-  names.slot_of_collider.assign(scene.colliders.size(), -1);
-  for (std::size_t k = 0; k < names.slots.size(); ++k) {
-    names.slot_of_collider[static_cast<std::size_t>(names.slots[k])] = static_cast<int>(k);
-  }
-  return names;
-}
-
-std::string FrameNameClash(const Scene& scene, const std::string& world_frame) {
-  // every TF frame the node broadcasts → who owns it; a contact frame's topic ~wrench/<x> is
-  // unique exactly when its frame <x>_contact is
-  std::map<std::string, std::string> owners;
-  owners.emplace(world_frame, "the fixed frame ~world_frame");
-  const auto claim = [&owners](const std::string& frame, const std::string& owner,
-                               const std::string& what) -> std::string {
-    const auto [it, inserted] = owners.emplace(frame, owner);
-    if (inserted) return "";
-    return owner + " would have the " + what + " of " + it->second +
-           " (frames and ~wrench/ topics replace every character other than A-Z a-z 0-9 _ by _; "
-           "rename one)";
-  };
-  for (const RigidBody& body : scene.bodies) {
-    const std::string clash = claim(body.name, "body \"" + body.name + "\"",
-                                    "TF frame \"" + body.name + "\"");
-    if (!clash.empty()) return clash;
-  }
-  for (const Collider& collider : scene.colliders) {
-    if (collider.body == kWorld) continue;
-    const std::string base = GraphName(collider.name);
-    const std::string clash =
-        claim(base + "_contact", "collision \"" + collider.name + "\"",
-              "contact frame \"" + base + "_contact\" and topic ~wrench/" + base);
-    if (!clash.empty()) return clash;
-  }
-  return "";
-}
-
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot) {
   return sim.FindContact(frames.slots[slot]);
 }
@@ -154,6 +99,20 @@ void FirstContacts(const Simulator& sim, std::vector<int>* first) {
     (*first)[static_cast<std::size_t>(c.collider_a)] = i;
     (*first)[static_cast<std::size_t>(c.collider_b)] = i;
   }
+}
+
+geometry_msgs::Pose ToMsg(const world::Pose& pose) {
+  geometry_msgs::Pose msg;
+  Set(pose.position, &msg.position);
+  Set(pose.orientation, &msg.orientation);
+  return msg;
+}
+
+geometry_msgs::Twist ToMsg(const world::Twist& twist) {
+  geometry_msgs::Twist msg;
+  Set(twist.linear, &msg.linear);
+  Set(twist.angular, &msg.angular);
+  return msg;
 }
 
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state) {
@@ -244,6 +203,26 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     info.tangential_velocity = {c.relative_velocity[1], c.relative_velocity[2]};
     info.drilling_velocity = c.relative_velocity[3];
   }
+}
+
+std::vector<geometry_msgs::TransformStamped> FixedLinkTransforms(
+    const scene_io::UrdfScene& urdf, const std::string& prefix, const std::string& world_frame,
+    bool world_links, const ros::Time& stamp) {
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const scene_io::FixedLink& link : urdf.fixed_links) {
+    if (link.body == kWorld && !world_links) continue;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id =
+        link.body == kWorld ? world_frame
+                            : prefix + urdf.scene.bodies[static_cast<std::size_t>(link.body)].name;
+    t.child_frame_id = prefix + link.name;
+    if (t.child_frame_id == t.header.frame_id || t.child_frame_id == world_frame) continue;
+    Set(Eigen::Vector3d(link.pose.translation()), &t.transform.translation);
+    Set(Eigen::Quaterniond(link.pose.linear()), &t.transform.rotation);
+    transforms.push_back(std::move(t));
+  }
+  return transforms;
 }
 
 void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,

@@ -16,9 +16,10 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   try {
     using namespace nonsmooth_sim::node;
-    // the convex pairs without a closed form (box–box, cylinder–box, ...) through FCL
-    nonsmooth_sim::RegisterFclPairs();
     NodeParameters parameters = ReadNodeParameters(nh, private_nh);
+    // the scene's collision table (of the URDF and of every spawned model): the core's closed
+    // forms, and FCL for the convex pairs without one (box–box, cylinder–box, ...)
+    nonsmooth_sim::RegisterFclPairs(&parameters.scene.collision_table);
     UrdfScene urdf = SceneFromUrdf(parameters.urdf_xml, parameters.scene);
     SimulationNode node(nh, private_nh, std::move(parameters), std::move(urdf));
     // two spinner threads: a long ~step (it runs in chunks) does not hold up the other services

@@ -1,62 +1,54 @@
 // ~spawn_urdf_model and ~delete_model (docs/ros.md, "World services"): models added to and removed
-// from the running world between two steps. The core does the work (Simulator::AddBodies,
-// RemoveBodies: the rest of the world keeps its state and contact memory); the node keeps its
-// views of the world in step: the configured start (reset_simulation), the models, the wrenches,
-// the contact frames and wrench topics, the markers.
+// from the running world between two steps. The world does the work and keeps the rules
+// (world::World::Spawn, Delete: the names, the bounds, the placement, the configured start, the
+// wrenches; the rest of the world keeps its state and contact memory); the node keeps the master
+// (the URDF's parameter), the contact frames and wrench topics and the markers in step.
 //
-// Names: a spawned model's bodies and collisions are "<model>/<link>" and "<model>/<collision>"
-// in the core scene, so its TF frames are "<model>/<link>" (rviz's RobotModel with TF prefix
-// <model> on the robot_description set under its namespace); services address its bodies as
-// "<model>::<link>" (as Gazebo) or by that full name.
+// Names: world/model_registry.h (rviz's RobotModel with TF prefix <model> on the
+// robot_description set under the model's namespace shows a spawned model).
 //
 // Locks: the world changes under the simulator mutex; the master calls (the namespace checks,
-// setting or deleting the robot_description, advertising and unadvertising ~wrench/ topics) are
-// made without it, under world_mutex_, which serialises spawns and deletes. A slot of a spawned
-// collision publishes from when its topic is advertised.
+// setting or deleting the robot_description, advertising ~wrench/ topics) are made without it, on
+// master_calls_ (in order, on their own thread), waited for at most kMasterTimeout under
+// world_mutex_, which serialises spawns and deletes. A master that does not answer in time: the
+// namespace check refuses the spawn (nothing changed); after the world changed, the reply says
+// that the parameter and topics follow when the master answers. A slot of a spawned collision
+// publishes from when its topic is advertised. A deleted collision's topic is not unadvertised
+// but kept for the next collision of that name (simulation_node.h, kept_wrench_pubs_): roscpp
+// unregisters a topic with the master while holding the lock every publish takes.
+#include <ros/master.h>
 #include <ros/names.h>
+#include <ros/this_node.h>
 
+#include <algorithm>
+#include <chrono>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nonsmooth_sim/node/simulation_node.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
-#include "nonsmooth_sim/scene_io/initial_state.h"
-#include "world_frames.h"
+#include "request_fields.h"
 
 namespace nonsmooth_sim::node {
 namespace {
 
-// The model frame in the world from a request's initial_pose relative to `reference`.
-Eigen::Isometry3d Placement(const Frame& reference, const geometry_msgs::Pose& pose) {
-  const Eigen::Vector3d position = FiniteVector("initial_pose.position", ToEigen(pose.position),
-                                                scene_io::kMaxInitialCoordinate);
-  const Eigen::Quaterniond orientation = Orientation("initial_pose.orientation", pose.orientation);
-  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
-  placement.linear() = (reference.rotation * orientation).normalized().toRotationMatrix();
-  placement.translation() = reference.origin + reference.rotation * position;
-  return placement;
+std::string InSeconds(std::chrono::milliseconds duration) {
+  return std::to_string(duration.count() / 1000) + " s";
 }
 
-// The URDF's scene placed at `placement`, its names prefixed with "<model>/".
-Scene PlacedModel(Scene scene, const std::string& prefix, const Eigen::Isometry3d& placement) {
-  const Eigen::Quaterniond turn(placement.linear());
-  for (RigidBody& body : scene.bodies) body.name = prefix + body.name;
-  for (Collider& collider : scene.colliders) {
-    collider.name = prefix + collider.name;
-    if (collider.body == kWorld) collider.pose = placement * collider.pose;
-  }
-  for (std::size_t b = 0; b < scene.initial_state.size(); ++b) {
-    BodyState& s = scene.initial_state[b];
-    s.position = placement * s.position;
-    s.orientation = (turn * s.orientation).normalized();
-    s.linear_velocity = turn * s.linear_velocity;  // body axes: angular_velocity stays
-    Check(s.position.lpNorm<Eigen::Infinity>() <= scene_io::kMaxInitialCoordinate,
-          "body " + scene.bodies[b].name + " would start outside |x|, |y|, |z| <= " +
-              std::to_string(scene_io::kMaxInitialCoordinate) + " m");
-  }
-  return scene;
+// A parameter call to the master, made until the master answers: roscpp's ros::param calls other
+// than set give up at once on a failed connection (e.g. one the master dropped while stopped)
+// and report it as a missing parameter. Called on master_calls_ only (it may wait for ever).
+// Returns whether the master took the call (false: also "not set"); `value` its payload.
+bool AskMaster(const char* method, const std::string& key, XmlRpc::XmlRpcValue* value) {
+  XmlRpc::XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  request[1] = key;
+  return ros::master::execute(method, request, response, *value, /*wait_for_master=*/true);
 }
 
 }  // namespace
@@ -83,12 +75,12 @@ std::string SimulationNode::ModelNamespace(const std::string& model_name,
             ": must be the model's own namespace " + own + " or one under it (never /, a global "
             "parameter or another model's namespace)");
   const std::string description = ros::names::append(ns, "robot_description");
-  Check(!nh_.hasParam(description),
+  XmlRpc::XmlRpcValue value;
+  Check(AskMaster("hasParam", description, &value) && !static_cast<bool>(value),
         "the parameter " + description + " exists already (set by someone else: deleting the "
         "model would remove it); choose another robot_namespace");
-  XmlRpc::XmlRpcValue value;
   for (std::string part = ns; part.size() > 1; part = part.substr(0, part.rfind('/'))) {
-    if (!nh_.getParam(part, value)) continue;
+    if (!AskMaster("getParam", part, &value)) continue;
     Check(value.getType() == XmlRpc::XmlRpcValue::TypeStruct,
           "the parameter " + part + " holds a value, not a namespace: setting " + description +
               " would replace it; choose another model_name or robot_namespace");
@@ -107,22 +99,24 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
   // the checks that need neither the simulator nor its mutex: names, the size of the URDF, the
   // namespace (the master), the URDF parsed
   try {
-    scene_io::CheckNameLength("model_name", req.model_name);
-    Check(!req.model_name.empty() && GraphName(req.model_name) == req.model_name,
-          "model_name \"" + req.model_name +
-              "\": must be letters, digits and '_', not starting with a digit (it prefixes the "
-              "model's TF frames and collision names)");
+    world::CheckModelName("model_name", req.model_name);
     Check(req.model_xml.size() <= parameters_.scene.max_bytes,
           "model_xml has " + std::to_string(req.model_xml.size()) +
               " bytes, more than the bound ~max_urdf_bytes = " +
               scene_io::DescribeBytes(parameters_.scene.max_bytes) + " (refused before parsing)");
     scene_io::CheckNameLength("robot_namespace", req.robot_namespace);
-    description = ModelNamespace(req.model_name, req.robot_namespace);
+    auto checked = std::make_shared<std::string>();
+    const bool answered = master_calls_.Run(
+        [this, checked, model = req.model_name, ns = req.robot_namespace] {
+          *checked = ModelNamespace(model, ns);
+        },
+        kMasterTimeout);
+    Check(answered, "the master did not answer within " + InSeconds(kMasterTimeout) +
+                        " (checking robot_namespace)");
+    description = *checked;
     UrdfSceneOptions options = parameters_.scene;  // the node's ~gravity, ~mu, ~friction_set, ...
     options.ground = false;                        // the world has its ground already
     urdf = SceneFromUrdf(req.model_xml, options);  // one-line reasons, as at start-up
-    Check(!urdf.scene.bodies.empty() || !urdf.scene.colliders.empty(),
-          "model_xml has neither a free body nor a collision: nothing to spawn");
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string(e.what()) + "; nothing changed";
@@ -131,64 +125,41 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
   WrenchTopics topics;
   std::string name;
   auto lock = LockForService();
+  const world::Model* spawned = nullptr;
   try {
-    Check(ModelIndex(req.model_name) < 0,
-          "model_name \"" + req.model_name + "\" exists already (~delete_model it first)");
-    const Frame reference =
-        BodyFrame(*sim_, ReferenceBody(req.reference_frame, "reference_frame"));
-    const Eigen::Isometry3d placement = Placement(reference, req.initial_pose);
-    Check(sim_->scene().bodies.size() + urdf.scene.bodies.size() <= kMaxWorldBodies,
-          "the world would have " +
-              std::to_string(sim_->scene().bodies.size() + urdf.scene.bodies.size()) +
-              " bodies, more than " + std::to_string(kMaxWorldBodies) + " (the most it holds)");
-    Check(sim_->scene().colliders.size() + urdf.scene.colliders.size() <= kMaxWorldCollisions,
-          "the world would have " +
-              std::to_string(sim_->scene().colliders.size() + urdf.scene.colliders.size()) +
-              " collisions, more than " + std::to_string(kMaxWorldCollisions) +
-              " (the bound on collisions per world)");
-    const Scene model = PlacedModel(urdf.scene, req.model_name + "/", placement);
-    {
-      // frames and topics one-to-one over the whole world (two transforms per frame otherwise)
-      Scene world = sim_->scene();
-      AppendScene(model, &world);
-      const std::string clash = FrameNameClash(world, parameters_.world_frame);
-      Check(clash.empty(), "model " + req.model_name + ": " + clash);
-    }
-
-    const int first_collider = static_cast<int>(sim_->scene().colliders.size());
-    const int first = sim_->AddBodies(model, model.initial_state);  // validates; or no change
-    // committed: nothing below throws on input
-    AppendScene(model, &configured_scene_);
-    Model added;
-    added.name = req.model_name;
-    added.prefix = req.model_name + "/";
-    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-      added.bodies.push_back(first + static_cast<int>(b));
-    }
-    for (int c = first_collider; c < static_cast<int>(sim_->scene().colliders.size()); ++c) {
-      added.colliders.push_back(c);
-    }
-    added.description = description;
-    models_.push_back(added);
+    spawned = &world_->Spawn(req.model_name, urdf.scene, req.reference_frame,
+                             ToWorld(req.initial_pose), description);
     warnings = urdf.warnings;
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string(e.what()) + "; nothing changed";
     return true;
   }
-  const Model& added = models_.back();
+  const world::Model& added = *spawned;
   name = added.name;
   topics = WorldChanged();
+  // its links merged into its bodies (its static links are placed by the spawn: not in TF)
+  fixed_links_[name] = FixedLinkTransforms(urdf, added.prefix, parameters_.world_frame,
+                                           /*world_links=*/false, StampOf(world_->sim().time()));
   res.success = true;
   res.status_message = "spawned " + added.name + " (" + std::to_string(added.bodies.size()) +
                        " bodies, " + std::to_string(added.colliders.size()) +
-                       " collisions) at t = " + std::to_string(sim_->time()) +
+                       " collisions) at t = " + std::to_string(world_->sim().time()) +
                        " s; its URDF is " + added.description;
   lock.unlock();
+  PublishFixedLinks();
   // the master, without the simulator mutex: the simulation steps on and the other services
   // answer while it is slow or stopped
-  nh_.setParam(description, req.model_xml);
-  AdvertiseWrenches(&topics);
+  const bool answered = master_calls_.Run(
+      [this, description, xml = req.model_xml, topics = std::move(topics)]() mutable {
+        nh_.setParam(description, xml);
+        AdvertiseWrenches(&topics);
+      },
+      kMasterTimeout);
+  if (!answered) {
+    res.status_message += "; the master did not answer within " + InSeconds(kMasterTimeout) + ": " +
+                          description + " and the ~wrench/ topics are set when it does";
+  }
   for (const std::string& warning : warnings) {
     ROS_WARN_STREAM("nonsmooth_sim: spawn " << name << ": " << warning);
   }
@@ -200,87 +171,76 @@ bool SimulationNode::OnDeleteModel(DeleteModel::Request& req, DeleteModel::Respo
   WrenchTopics topics;
   std::string description;
   auto lock = LockForService();
-  const int m = ModelIndex(req.model_name);
-  if (m < 0) {
-    res.success = false;
-    res.status_message = UnknownModel(req.model_name) + "; nothing changed";
-    return true;
-  }
-  const Model removed = models_[static_cast<std::size_t>(m)];
-  const Scene& scene = sim_->scene();
-  std::vector<char> remove_body(scene.bodies.size(), 0);
-  std::vector<char> remove_collider(scene.colliders.size(), 0);
-  std::vector<int> statics;
-  for (int b : removed.bodies) remove_body[static_cast<std::size_t>(b)] = 1;
-  for (int c : removed.colliders) {
-    remove_collider[static_cast<std::size_t>(c)] = 1;
-    if (scene.colliders[static_cast<std::size_t>(c)].body == kWorld) statics.push_back(c);
-  }
+  world::Model removed;
   try {
-    sim_->RemoveBodies(removed.bodies, statics);
-  } catch (const std::exception& e) {  // the models hold valid indices: not expected
+    removed = world_->Delete(req.model_name);  // its wrenches with it
+  } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string(e.what()) + "; nothing changed";
     return true;
   }
-  // the same removal on the configured start: the same old → new maps
-  std::vector<int> body_map;
-  std::vector<int> collider_map;
-  RemoveFromScene(remove_body, remove_collider, &configured_scene_, &body_map, &collider_map);
-  models_.erase(models_.begin() + m);
-  for (Model& model : models_) {
-    for (int& b : model.bodies) b = body_map[static_cast<std::size_t>(b)];
-    for (int& c : model.colliders) c = collider_map[static_cast<std::size_t>(c)];
-  }
-  std::vector<ExternalWrench> kept;
-  for (ExternalWrench w : wrenches_) {
-    w.body = body_map[static_cast<std::size_t>(w.body)];
-    if (w.body >= 0) kept.push_back(w);
-  }
-  wrenches_.swap(kept);
   description = removed.description;
   topics = WorldChanged();
+  fixed_links_.erase(removed.name);
   res.success = true;
   res.status_message = "deleted " + removed.name + " (" + std::to_string(removed.bodies.size()) +
                        " bodies, " + std::to_string(removed.colliders.size()) +
-                       " collisions) at t = " + std::to_string(sim_->time()) + " s";
+                       " collisions) at t = " + std::to_string(world_->sim().time()) + " s";
   lock.unlock();
+  PublishFixedLinks();
   // the master, without the simulator mutex (as in OnSpawnUrdfModel)
-  if (!description.empty()) nh_.deleteParam(description);
-  AdvertiseWrenches(&topics);  // the removed topics unadvertised
+  const bool answered = master_calls_.Run(
+      [this, description, topics = std::move(topics)]() mutable {
+        XmlRpc::XmlRpcValue unused;
+        if (!description.empty()) AskMaster("deleteParam", description, &unused);
+        AdvertiseWrenches(&topics);  // the removed topics kept (beyond the bound: unadvertised)
+      },
+      kMasterTimeout);
+  if (!answered) {
+    res.status_message += "; the master did not answer within " + InSeconds(kMasterTimeout) +
+                          (description.empty() ? std::string()
+                                               : ": " + description + " is deleted when it does");
+  }
   return true;
 }
 
 SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
-  // wrench topics: kept for the collisions that stay; a new one gets no publisher until
-  // AdvertiseWrenches (outside the mutex) installs it; a removed one gets a zero wrench (rviz
-  // clears its arrow) and is unadvertised when AdvertiseWrenches drops the last copy
+  // wrench topics: kept for the collisions that stay; a new one takes the kept publisher of its
+  // topic or gets none until AdvertiseWrenches (outside the mutex) installs it; a removed one
+  // gets a zero wrench (rviz clears its arrow) and is kept, beyond the bound the oldest dropped
   std::map<std::string, ros::Publisher> previous;
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
     if (wrench_pubs_[i]) previous[wrench_pubs_[i].getTopic()] = wrench_pubs_[i];
   }
   const FrameNames old_frames = frames_;
-  frames_ = MakeFrameNames(sim_->scene(), parameters_.world_frame);
+  frames_ = MakeFrameNames(world_->sim().scene(), parameters_.world_frame);
   WrenchTopics topics;
   std::vector<ros::Publisher> publishers;
   for (std::size_t slot = 0; slot < frames_.slots.size(); ++slot) {
     const std::string topic = WrenchTopic(slot);
-    const auto found = previous.find(private_nh_.resolveName(topic));
+    const std::string resolved = private_nh_.resolveName(topic);
+    const auto found = previous.find(resolved);
+    const auto kept = kept_wrench_pubs_.find(resolved);
     if (found != previous.end()) {
       publishers.push_back(found->second);
       previous.erase(found);
+    } else if (kept != kept_wrench_pubs_.end()) {
+      publishers.push_back(kept->second);
+      kept_wrench_pubs_.erase(kept);
+      kept_wrench_order_.erase(
+          std::find(kept_wrench_order_.begin(), kept_wrench_order_.end(), resolved));
     } else {
       publishers.emplace_back();
       topics.to_advertise.push_back(topic);
     }
   }
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
-    if (!wrench_pubs_[i] || previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // kept
+    if (!wrench_pubs_[i] || previous.count(wrench_pubs_[i].getTopic()) == 0) continue;  // stays
     geometry_msgs::WrenchStamped zero;
-    zero.header.stamp = StampOf(sim_->time());
+    zero.header.stamp = StampOf(world_->sim().time());
     zero.header.frame_id = old_frames.contacts[i];
     wrench_pubs_[i].publish(zero);
-    topics.retired.push_back(wrench_pubs_[i]);
+    KeepWrenchPublisher(wrench_pubs_[i], &topics.dropped);
   }
   wrench_pubs_.swap(publishers);
   wrench_closed_.assign(frames_.slots.size(), false);
@@ -291,9 +251,28 @@ SimulationNode::WrenchTopics SimulationNode::WorldChanged() {
   return topics;
 }
 
+void SimulationNode::PublishFixedLinks() {
+  tf2_msgs::TFMessage message;
+  for (const auto& [model, transforms] : fixed_links_) {
+    message.transforms.insert(message.transforms.end(), transforms.begin(), transforms.end());
+  }
+  tf_static_pub_.publish(message);
+}
+
+void SimulationNode::KeepWrenchPublisher(const ros::Publisher& publisher,
+                                         std::vector<ros::Publisher>* dropped) {
+  kept_wrench_pubs_[publisher.getTopic()] = publisher;
+  kept_wrench_order_.push_back(publisher.getTopic());
+  while (kept_wrench_order_.size() > kMaxKeptWrenchTopics) {
+    const auto oldest = kept_wrench_pubs_.find(kept_wrench_order_.front());
+    dropped->push_back(oldest->second);
+    kept_wrench_pubs_.erase(oldest);
+    kept_wrench_order_.pop_front();
+  }
+}
+
 std::string SimulationNode::WrenchTopic(std::size_t slot) const {
-  return "wrench/" +
-         GraphName(sim_->scene().colliders[static_cast<std::size_t>(frames_.slots[slot])].name);
+  return "wrench/" + frames_.topics[slot];
 }
 
 void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {
@@ -307,10 +286,16 @@ void SimulationNode::AdvertiseWrenches(WrenchTopics* topics) {
     for (std::size_t slot = 0; slot < wrench_pubs_.size(); ++slot) {
       if (wrench_pubs_[slot]) continue;
       const auto found = advertised.find(private_nh_.resolveName(WrenchTopic(slot)));
-      if (found != advertised.end()) wrench_pubs_[slot] = found->second;
+      if (found == advertised.end()) continue;
+      wrench_pubs_[slot] = found->second;
+      advertised.erase(found);
+    }
+    // slots removed since (a delete after a spawn whose master calls were late): kept
+    for (const auto& [topic, publisher] : advertised) {
+      KeepWrenchPublisher(publisher, &topics->dropped);
     }
   }
-  topics->retired.clear();  // the last copies of the removed topics: unadvertised here
+  topics->dropped.clear();  // the last copies of the oldest kept topics: unadvertised here
 }
 
 }  // namespace nonsmooth_sim::node

@@ -2,6 +2,7 @@
 #include "nonsmooth_sim/node/node_parameters.h"
 
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/world/model_registry.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -92,7 +93,19 @@ scene_io::InitialStateSpec ReadInitialState(const ParameterReader& r) {
     if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
       r.Fail("initial_state/bodies", "expected a map from link names to states");
     }
+    // bounded as the world: at most one entry per body it can hold, names as in a URDF
+    if (static_cast<std::size_t>(value.size()) > world::ModelRegistry::kMaxWorldBodies) {
+      r.Fail("initial_state/bodies",
+             std::to_string(value.size()) + " entries, more than the bound of " +
+                 std::to_string(world::ModelRegistry::kMaxWorldBodies) +
+                 " (the most bodies a world holds)");
+    }
     for (auto& [link, body] : value) {
+      try {
+        scene_io::CheckNameLength("link", link);
+      } catch (const std::invalid_argument& e) {
+        r.Fail("initial_state/bodies", e.what());
+      }
       const std::string where = "initial_state/bodies/" + link;
       if (body.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
         r.Fail(where, "expected a map with position, orientation, linear_velocity, "

@@ -7,7 +7,6 @@
 #include <string>
 #include <thread>
 
-#include "nonsmooth_sim/node/initial_conditions.h"
 #include "nonsmooth_sim/node/simulation_node.h"
 
 namespace nonsmooth_sim::node {
@@ -81,8 +80,8 @@ bool SimulationNode::OnUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Respo
 
 bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Response& res) {
   auto lock = LockForService();
-  res.sim_time = sim_->time();
-  res.stamp = StampOf(sim_->time());
+  res.sim_time = world_->sim().time();
+  res.stamp = StampOf(world_->sim().time());
   if (!paused_) {
     res.success = false;
     res.status_message = "the simulation is running: call ~pause_physics first";
@@ -110,9 +109,9 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
                     std::chrono::duration<double>(kStepChunkWall));
     std::uint32_t calls = 0;
     while (done < req.steps) {
-      const double before = sim_->time();
+      const double before = world_->sim().time();
       const std::int64_t ticks = StepOnce(req.steps - done);
-      if (sim_->time() == before || !fault_.empty()) {
+      if (world_->sim().time() == before || !fault_.empty()) {
         failed = true;
         break;
       }
@@ -135,8 +134,8 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
     if (interrupted != nullptr) break;
   }
   PublishClock(/*flush=*/true);
-  res.sim_time = sim_->time();
-  res.stamp = StampOf(sim_->time());
+  res.sim_time = world_->sim().time();
+  res.stamp = StampOf(world_->sim().time());
   if (failed) {
     res.success = false;
     res.status_message =
@@ -159,36 +158,10 @@ bool SimulationNode::OnStep(StepSimulation::Request& req, StepSimulation::Respon
 
 bool SimulationNode::OnResetState(ResetState::Request& req, ResetState::Response& res) {
   const auto lock = LockForService();
-  res.sim_time = sim_->time();
+  res.sim_time = world_->sim().time();
   try {
-    // a body of the start-up model (urdf_); spawned models: ~set_model_state
-    int body = req.body.empty() ? initial_body_ : -1;
-    for (std::size_t b = 0; b < urdf_.scene.bodies.size() && body < 0; ++b) {
-      if (urdf_.scene.bodies[b].name == req.body) body = static_cast<int>(b);
-    }
-    if (body < 0) {
-      throw std::invalid_argument("body \"" + req.body +
-                                  "\" is not a free body of the start-up model (a spawned "
-                                  "model's: ~set_model_state)");
-    }
-    const std::vector<int>* where = nullptr;  // per urdf_ body its index in the world
-    for (const Model& model : models_) {
-      if (model.description.empty()) where = &model.bodies;
-    }
-    if (where == nullptr) {
-      throw std::invalid_argument("the start-up model was deleted (~delete_model)");
-    }
-    const InitialConditions request = FromRequest(req);
-    ValidateInitialConditions(request);
-    std::vector<BodyState> state = configured_scene_.initial_state;
-    if (body == initial_body_) {
-      const std::vector<BodyState> start =
-          InitialState(urdf_, body, Merge(parameters_.initial, request));
-      for (std::size_t b = 0; b < start.size(); ++b) state[(*where)[b]] = start[b];
-    } else {
-      state[(*where)[body]] = InitialState(urdf_, body, request)[body];
-    }
-    sim_->SetState(state);  // validates; clears the warm start
+    // a body of the start-up model; spawned models: ~set_model_state
+    world_->Reset(req.body, FromRequest(req));  // validates; clears the warm start
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string("rejected, state unchanged: ") + e.what();
@@ -196,13 +169,13 @@ bool SimulationNode::OnResetState(ResetState::Request& req, ResetState::Response
   }
   AfterReset();
   res.success = true;
-  res.status_message = "reset at t = " + std::to_string(sim_->time()) + " s";
+  res.status_message = "reset at t = " + std::to_string(world_->sim().time()) + " s";
   return true;
 }
 
 bool SimulationNode::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   const auto lock = LockForService();
-  sim_->SetState(configured_scene_.initial_state);
+  world_->ResetWorld();
   AfterReset();
   return true;
 }
@@ -210,14 +183,7 @@ bool SimulationNode::OnResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Re
 bool SimulationNode::OnResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   const auto lock = LockForService();
   // a fresh simulator with the configured laws and solver; the time goes on (/clock monotone)
-  const double time = sim_->time();
-  if (configured_scene_.bodies.empty()) {
-    // every model deleted (a simulator needs a body): only the state of the static world is left
-    sim_->SetState(configured_scene_.initial_state);
-  } else {
-    sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
-    sim_->SetTime(time);
-  }
+  world_->ResetSimulation();
   // the configured solver and accuracy, as the fresh simulator's
   tick_ = parameters_.simulator.time_step;
   solver_tolerance_ = parameters_.simulator.solver.tolerance_rel;
@@ -241,14 +207,14 @@ bool SimulationNode::OnSetFrictionSet(SetFrictionSet::Request& req,
     return true;
   }
   try {
-    sim_->SetFrictionSet(*set, req.contact);
+    world_->sim().SetFrictionSet(*set, req.contact);
   } catch (const std::invalid_argument& e) {
     res.success = false;
     res.status_message = std::string(e.what()) + "; nothing changed";
     return true;
   }
   res.success = true;
-  res.status_message = "friction set at t = " + std::to_string(sim_->time()) +
+  res.status_message = "friction set at t = " + std::to_string(world_->sim().time()) +
                        " s: " + FrictionSetSummary();
   return true;
 }
@@ -259,7 +225,7 @@ bool SimulationNode::OnGetFrictionSet(GetFrictionSet::Request& req,
   if (!req.contact.empty()) {
     // one collision or one contact "<a>/<b>"
     try {
-      const FrictionSet set = sim_->FrictionSetOf(req.contact);
+      const FrictionSet set = world_->sim().FrictionSetOf(req.contact);
       res.contacts.push_back(req.contact);
       res.friction_sets.emplace_back(FrictionSetName(set));
       res.success = true;
@@ -270,7 +236,7 @@ bool SimulationNode::OnGetFrictionSet(GetFrictionSet::Request& req,
     }
     return true;
   }
-  for (const Collider& c : sim_->scene().colliders) {
+  for (const Collider& c : world_->sim().scene().colliders) {
     if (c.body == kWorld) continue;
     res.contacts.push_back(c.name);
     res.friction_sets.emplace_back(FrictionSetName(c.law.friction_set));
@@ -283,8 +249,8 @@ bool SimulationNode::OnGetFrictionSet(GetFrictionSet::Request& req,
 bool SimulationNode::OnGetSolverProperties(GetSolverProperties::Request&,
                                            GetSolverProperties::Response& res) {
   const auto lock = LockForService();
-  const SimulatorOptions& o = sim_->options();
-  res.time_step = tick_;  // sim_'s changes at every step with ~accuracy
+  const SimulatorOptions& o = world_->sim().options();
+  res.time_step = tick_;  // the simulator's changes at every step with ~accuracy
   res.solver = std::string(SolverTypeName(o.solver.type));
   res.tolerance = solver_tolerance_;  // as asked (~accuracy lowers the solver's to TOL/100)
   res.tolerance_abs = o.solver.tolerance_abs;
@@ -301,7 +267,7 @@ bool SimulationNode::OnGetSolverProperties(GetSolverProperties::Request&,
 bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
                                            SetSolverProperties::Response& res) {
   const auto lock = LockForService();
-  SimulatorOptions o = sim_->options();
+  SimulatorOptions o = world_->sim().options();
   o.time_step = tick_;
   o.solver.tolerance_rel = solver_tolerance_;
   AccuracyOptions accuracy = accuracy_;
@@ -342,7 +308,7 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
     }
     ValidateSimulatorOptions(o);
     ValidateAccuracyOptions(accuracy);
-    sim_->SetOptions(o);
+    world_->sim().SetOptions(o);
   } catch (const std::exception& e) {
     res.success = false;
     res.status_message = std::string("rejected, nothing changed: ") + e.what();
@@ -374,7 +340,7 @@ bool SimulationNode::OnSetSolverProperties(SetSolverProperties::Request& req,
 
 bool SimulationNode::OnGetState(GetSimulationState::Request&, GetSimulationState::Response& res) {
   const auto lock = LockForService();
-  FillState(*sim_, paused_, frames_.world, &res.state);
+  FillState(world_->sim(), paused_, frames_.world, &res.state);
   return true;
 }
 

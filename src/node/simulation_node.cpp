@@ -11,7 +11,7 @@
 #include <string>
 
 #include "nonsmooth_sim/core/overlaps.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/world/lost_bodies.h"
 
 namespace nonsmooth_sim::node {
 namespace {
@@ -27,27 +27,11 @@ constexpr int kMinBatchedQueue = 100;
 constexpr std::int64_t kWallCheckSteps = 16;
 // A step with more solver iterations than this checks the wall clock at once.
 constexpr int kLongStepIterations = 100;
+// /diagnostics lists at most this many lost bodies by name (their count always).
+constexpr std::size_t kMaxLostListed = 10;
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
-}
-
-int ResolveBody(const UrdfScene& urdf, const std::string& name) {
-  if (name.empty()) return 0;
-  for (int b = 0; b < static_cast<int>(urdf.scene.bodies.size()); ++b) {
-    if (urdf.scene.bodies[b].name == name) return b;
-  }
-  throw std::invalid_argument("parameter ~initial/body: \"" + name + "\" is not a free body");
-}
-
-Scene ConfiguredScene(const UrdfScene& urdf, int body, const InitialConditions& initial,
-                      const scene_io::InitialStateSpec& initial_state) {
-  Scene scene = urdf.scene;
-  scene.initial_state = InitialState(urdf, body, initial);
-  if (!initial_state.empty()) {
-    scene.initial_state = scene_io::ApplyInitialState(scene, scene.initial_state, initial_state);
-  }
-  return scene;
 }
 
 }  // namespace
@@ -66,33 +50,31 @@ void SimulationNode::RunStatistics::Add(const StepStatistics& step) {
 SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
                                NodeParameters parameters, UrdfScene urdf)
     : parameters_(std::move(parameters)),
-      urdf_(std::move(urdf)),
-      initial_body_(ResolveBody(urdf_, parameters_.initial_body)),
-      configured_scene_(
-          ConfiguredScene(urdf_, initial_body_, parameters_.initial, parameters_.initial_state)),
-      frames_(MakeFrameNames(urdf_.scene, parameters_.world_frame)),
       nh_(nh),
       private_nh_(private_nh),
       updater_(nh, private_nh) {
-  // names map one-to-one to frames and topics (two transforms per frame otherwise)
-  if (const std::string clash = FrameNameClash(urdf_.scene, parameters_.world_frame);
-      !clash.empty()) {
-    throw std::invalid_argument("urdf: " + clash);
-  }
-  sim_ = std::make_unique<Simulator>(configured_scene_, parameters_.simulator);
+  world::WorldConfig config;
+  config.model_name = parameters_.model_name;
+  config.initial_body = parameters_.initial_body;
+  config.initial = parameters_.initial;
+  config.initial_state = parameters_.initial_state;
+  config.simulator = parameters_.simulator;
+  config.world_frame = parameters_.world_frame;
+  // the start-up model at its configured start; throws std::invalid_argument with one line
+  world_ = std::make_unique<world::World>(std::move(urdf), std::move(config));
+  frames_ = MakeFrameNames(world_->sim().scene(), parameters_.world_frame);
   tick_ = parameters_.simulator.time_step;
   solver_tolerance_ = parameters_.simulator.solver.tolerance_rel;
   accuracy_ = parameters_.accuracy;
   ResetStepper();
-  BuildModels();
   paused_ = parameters_.paused;
-  for (const std::string& warning : urdf_.warnings) ROS_WARN_STREAM(warning);
+  for (const std::string& warning : world_->urdf().warnings) ROS_WARN_STREAM(warning);
   // overlaps at the start: resolved by the first steps, but a deep one is usually a scene error
-  for (const Overlap& o : FindOverlaps(sim_->scene(), sim_->state(), kOverlapWarningDepth)) {
+  for (const Overlap& o : FindOverlaps(world_->sim().scene(), world_->sim().state(), kOverlapWarningDepth)) {
     ROS_WARN("nonsmooth_sim: collisions \"%s\" and \"%s\" overlap by %.3g m at the start "
              "(resolved by the first steps)",
-             sim_->scene().colliders[static_cast<std::size_t>(o.collider_a)].name.c_str(),
-             sim_->scene().colliders[static_cast<std::size_t>(o.collider_b)].name.c_str(),
+             world_->sim().scene().colliders[static_cast<std::size_t>(o.collider_a)].name.c_str(),
+             world_->sim().scene().colliders[static_cast<std::size_t>(o.collider_b)].name.c_str(),
              o.depth);
   }
 
@@ -110,10 +92,16 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   contacts_pub_ = private_nh_.advertise<ContactSteps>("contacts", batched_queue);
   state_pub_ = private_nh_.advertise<SimulationState>("state", queue);
   markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", queue);
-  for (int collider : frames_.slots) {
-    const std::string& name = urdf_.scene.colliders[static_cast<std::size_t>(collider)].name;
+  // the links merged into bodies or fixed to the world, as robot_state_publisher sends fixed
+  // joints: rviz's RobotModel shows every link with nothing else running
+  tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
+  fixed_links_[world_->models().models().front().name] =
+      FixedLinkTransforms(world_->urdf(), "", parameters_.world_frame, /*world_links=*/true,
+                          StampOf(world_->sim().time()));
+  PublishFixedLinks();
+  for (const std::string& topic : frames_.topics) {
     wrench_pubs_.push_back(
-        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + GraphName(name), queue));
+        private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench/" + topic, queue));
   }
   wrench_closed_.assign(frames_.slots.size(), false);
 
@@ -135,9 +123,29 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
       p.advertiseService("set_model_state", &SimulationNode::OnSetModelState, this),
       p.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this),
       p.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this),
-      p.advertiseService("spawn_urdf_model", &SimulationNode::OnSpawnUrdfModel, this),
-      p.advertiseService("delete_model", &SimulationNode::OnDeleteModel, this),
   };
+
+  {
+    // spawns and deletes on a queue and thread of their own: one runs at a time anyway
+    // (world_mutex_), and one that waits for the master (up to kMasterTimeout) never holds a
+    // thread of the spinner that serves the other services
+    ros::AdvertiseServiceOptions spawn;
+    spawn.init<SpawnModel::Request, SpawnModel::Response>(
+        "spawn_urdf_model", [this](SpawnModel::Request& req, SpawnModel::Response& res) {
+          return OnSpawnUrdfModel(req, res);
+        });
+    spawn.callback_queue = &world_queue_;
+    services_.push_back(p.advertiseService(spawn));
+    ros::AdvertiseServiceOptions remove;
+    remove.init<DeleteModel::Request, DeleteModel::Response>(
+        "delete_model", [this](DeleteModel::Request& req, DeleteModel::Response& res) {
+          return OnDeleteModel(req, res);
+        });
+    remove.callback_queue = &world_queue_;
+    services_.push_back(p.advertiseService(remove));
+    world_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &world_queue_);
+    world_spinner_->start();
+  }
 
   {
     ros::AdvertiseServiceOptions step;
@@ -164,7 +172,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
   ROS_INFO(
       "nonsmooth_sim: %zu bodies, %zu collisions, friction set %s, time step %g s, "
       "real-time factor %g%s, %s",
-      urdf_.scene.bodies.size(), urdf_.scene.colliders.size(), FrictionSetSummary().c_str(),
+      world_->urdf().scene.bodies.size(), world_->urdf().scene.colliders.size(),
+      FrictionSetSummary().c_str(),
       parameters_.simulator.time_step, parameters_.real_time_factor,
       parameters_.real_time_factor == 0.0 ? " (as fast as possible)" : "",
       paused_ ? "paused" : "running");
@@ -185,6 +194,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& nh, const ros::NodeHandle&
 
 SimulationNode::~SimulationNode() {
   if (step_spinner_) step_spinner_->stop();  // a running ~step ends at its next chunk (ros::ok)
+  if (world_spinner_) world_spinner_->stop();  // a running spawn or delete ends first
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
@@ -285,24 +295,24 @@ std::int64_t SimulationNode::StepOnce(std::int64_t max_ticks) {
       if (c->period > 0) max_ticks = std::min(max_ticks, std::max<std::int64_t>(1, c->countdown));
     }
     if (parameters_.duration > 0.0 && !duration_reached_) {
-      const auto left = std::llround((parameters_.duration - sim_->time()) / tick_);
+      const auto left = std::llround((parameters_.duration - world_->sim().time()) / tick_);
       max_ticks = std::min(max_ticks, std::max<std::int64_t>(1, left));
     }
     ticks = std::max<std::int64_t>(1, max_ticks);
   }
   const double interval = static_cast<double>(ticks) * tick_;
   try {
-    if (wrenches_active_) ApplyWrenches(interval);
+    world_->ApplyScheduledWrenches(interval);
     if (stepper_) {
       // each accepted step counted in the statistics; last_step_ is the last one's
-      last_step_ = stepper_->AdvanceTo(sim_->time() + interval,
+      last_step_ = stepper_->AdvanceTo(world_->sim().time() + interval,
                                        [this](const StepStatistics& s, double) {
                                          period_.Add(s);
                                          total_.Add(s);
                                        });
     } else {
       // in place: the statistics' per-contact flags keep their storage (no allocation per step)
-      sim_->Step(&last_step_);
+      world_->sim().Step(&last_step_);
     }
   } catch (const std::exception& e) {
     // the core validates its inputs and throws on what it cannot step; never abort the node
@@ -314,18 +324,18 @@ std::int64_t SimulationNode::StepOnce(std::int64_t max_ticks) {
     std::snprintf(reason, sizeof reason,
                   "the state became non-finite (dt*|omega| = %.3g, ~gyroscopic %s)",
                   last_step_.max_dt_omega,
-                  std::string(GyroscopicSchemeName(sim_->options().gyroscopic)).c_str());
+                  std::string(GyroscopicSchemeName(world_->sim().options().gyroscopic)).c_str());
     Fault(reason);
     return ticks;
   }
   if (last_step_.explicit_gyroscopic_unsafe) {
-    const double dt = sim_->options().time_step;
+    const double dt = world_->sim().options().time_step;
     ROS_WARN_ONCE(
         "nonsmooth_sim: warning: explicit gyroscopic term outside its safe range "
         "dt*|omega| <= %g (reached %.2g at t = %.4g s): energy can grow by "
         "O((dt*|omega|)^2) per step and diverge; use ~gyroscopic implicit_midpoint or "
         "~time_step <= %.1e",
-        kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, sim_->time(),
+        kExplicitGyroscopicMaxDtOmega, last_step_.max_dt_omega, world_->sim().time(),
         kExplicitGyroscopicMaxDtOmega * dt / last_step_.max_dt_omega);
   }
   if (!stepper_) {
@@ -334,7 +344,7 @@ std::int64_t SimulationNode::StepOnce(std::int64_t max_ticks) {
   }
   PublishDue(ticks);
   if (parameters_.duration > 0.0 && !duration_reached_ &&
-      sim_->time() >= parameters_.duration - 0.5 * tick_) {
+      world_->sim().time() >= parameters_.duration - 0.5 * tick_) {
     duration_reached_ = true;
     summary_due_ = true;  // logged by the caller once this chunk's wall time is counted
     Pause("duration reached");
@@ -344,12 +354,12 @@ std::int64_t SimulationNode::StepOnce(std::int64_t max_ticks) {
 
 void SimulationNode::ResetStepper() {
   stepper_.reset();
-  SimulatorOptions options = sim_->options();
+  SimulatorOptions options = world_->sim().options();
   options.time_step = tick_;
   options.solver.tolerance_rel = solver_tolerance_;
-  sim_->SetOptions(options);
+  world_->sim().SetOptions(options);
   // the stepper lowers the solver's tolerance to TOL/100 and changes the step at every step
-  if (accuracy_.tolerance > 0.0) stepper_ = std::make_unique<AdaptiveStepper>(sim_.get(), accuracy_);
+  if (accuracy_.tolerance > 0.0) stepper_ = std::make_unique<AdaptiveStepper>(&world_->sim(), accuracy_);
 }
 
 void SimulationNode::LogSummaryIfDue() {
@@ -361,7 +371,7 @@ void SimulationNode::LogSummaryIfDue() {
       "nonsmooth_sim: reached t = %.6f s after %lld steps: %.4g s wall running "
       "(real-time factor %.2f), %.3f us/step stepping + %.3f us/step publishing, "
       "%lld unconverged steps",
-      sim_->time(), static_cast<long long>(total_.steps), run_wall_,
+      world_->sim().time(), static_cast<long long>(total_.steps), run_wall_,
       run_wall_ > 0.0 ? running_sim_time_ / run_wall_ : 0.0, 1e6 * stepping / steps,
       1e6 * total_.publish_wall / steps, static_cast<long long>(total_.unconverged));
 }
@@ -371,7 +381,7 @@ double SimulationNode::RunningWall(Clock::time_point now) const {
 }
 
 void SimulationNode::Fault(const std::string& what) {
-  fault_ = what + " at t = " + std::to_string(sim_->time()) +
+  fault_ = what + " at t = " + std::to_string(world_->sim().time()) +
            " s: paused at the last finite state; call ~reset, ~reset_world or "
            "~reset_simulation to go on";
   ++faults_;
@@ -383,7 +393,7 @@ void SimulationNode::Pause(const char* reason) {
   if (!paused_) run_wall_ += Seconds(Clock::now() - unpaused_at_);
   paused_ = true;
   PublishClock(/*flush=*/true);
-  ROS_DEBUG("nonsmooth_sim: paused (%s) at t = %.6f s", reason, sim_->time());
+  ROS_DEBUG("nonsmooth_sim: paused (%s) at t = %.6f s", reason, world_->sim().time());
   wake_.notify_all();
 }
 
@@ -449,11 +459,11 @@ void SimulationNode::PublishDue(std::int64_t ticks) {
 }
 
 void SimulationNode::PublishTransforms() {
-  const ros::Time stamp = StampOf(sim_->time());
+  const ros::Time stamp = StampOf(world_->sim().time());
   if (stamp <= last_tf_stamp_) return;  // tf2 warns about repeated stamps
   last_tf_stamp_ = stamp;
   if (tf_pub_.getNumSubscribers() == 0) return;
-  AppendTransforms(*sim_, frames_, stamp, &tf_msg_);
+  AppendTransforms(world_->sim(), frames_, stamp, &tf_msg_);
   if (++tf_samples_ >= parameters_.max_samples_per_message ||
       tf_msg_.transforms.size() >= kMaxItemsPerMessage) {
     FlushSamples();
@@ -461,10 +471,10 @@ void SimulationNode::PublishTransforms() {
 }
 
 void SimulationNode::PublishContacts() {
-  const ros::Time stamp = StampOf(sim_->time());
+  const ros::Time stamp = StampOf(world_->sim().time());
   if (contacts_pub_.getNumSubscribers() > 0) {
     contacts_msg_.steps.emplace_back();
-    FillContacts(*sim_, last_step_, frames_, &contacts_msg_.steps.back());
+    FillContacts(world_->sim(), last_step_, frames_, &contacts_msg_.steps.back());
     pending_contact_count_ += contacts_msg_.steps.back().contacts.size();
     if (++contacts_samples_ >= parameters_.max_samples_per_message ||
         pending_contact_count_ >= kMaxItemsPerMessage) {
@@ -472,13 +482,13 @@ void SimulationNode::PublishContacts() {
     }
   }
   // a wrench per closed contact, and one zero wrench when a contact opens (clears rviz)
-  FirstContacts(*sim_, &first_contact_);
+  FirstContacts(world_->sim(), &first_contact_);
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
     const bool closed = first_contact_[static_cast<std::size_t>(frames_.slots[i])] >= 0;
     // (a slot of a spawned collision has no publisher until AdvertiseWrenches)
     if ((closed || wrench_closed_[i]) && wrench_pubs_[i] &&
         wrench_pubs_[i].getNumSubscribers() > 0) {
-      FillWrench(*sim_, i, frames_, stamp, &wrench_msg_);
+      FillWrench(world_->sim(), i, frames_, stamp, &wrench_msg_);
       wrench_pubs_[i].publish(wrench_msg_);
     }
     wrench_closed_[i] = closed;
@@ -502,20 +512,20 @@ void SimulationNode::FlushSamples() {
 
 void SimulationNode::PublishState() {
   if (state_pub_.getNumSubscribers() == 0) return;
-  FillState(*sim_, paused_, frames_.world, &state_msg_);
+  FillState(world_->sim(), paused_, frames_.world, &state_msg_);
   state_pub_.publish(state_msg_);
 }
 
 void SimulationNode::PublishMarkers() {
   if (markers_pub_.getNumSubscribers() == 0) return;
-  FillMarkers(*sim_, frames_, StampOf(sim_->time()), parameters_.marker_force_scale,
+  FillMarkers(world_->sim(), frames_, StampOf(world_->sim().time()), parameters_.marker_force_scale,
               parameters_.marker_torque_scale, markers_count_, &markers_msg_);
-  markers_count_ = sim_->contacts().size();
+  markers_count_ = world_->sim().contacts().size();
   markers_pub_.publish(markers_msg_);
 }
 
 void SimulationNode::PublishClock(bool flush) {
-  const ros::Time stamp = StampOf(sim_->time());
+  const ros::Time stamp = StampOf(world_->sim().time());
   if (!last_clock_stamp_.isZero() && stamp <= last_clock_stamp_) return;  // monotone
   const Clock::time_point now = Clock::now();
   if (!flush && Seconds(now - last_clock_wall_) < 1.0 / parameters_.clock_rate) return;
@@ -535,7 +545,7 @@ void SimulationNode::AfterReset() {
   geometry_msgs::WrenchStamped zero;
   for (std::size_t i = 0; i < wrench_pubs_.size(); ++i) {
     if (!wrench_pubs_[i]) continue;  // advertised after a spawn (AdvertiseWrenches)
-    zero.header.stamp = StampOf(sim_->time());
+    zero.header.stamp = StampOf(world_->sim().time());
     zero.header.frame_id = frames_.contacts[i];
     wrench_pubs_[i].publish(zero);
   }
@@ -558,20 +568,31 @@ void SimulationNode::OnDiagnosticsTimer(const ros::WallTimerEvent&) {
     snapshot_.period = period_;
     period_ = RunStatistics();
     snapshot_.unconverged_total = total_.unconverged;
-    snapshot_.sim_time = sim_->time();
+    snapshot_.sim_time = world_->sim().time();
     snapshot_.paused = paused_;
     snapshot_.closed_contacts = last_step_.closed_contacts;
     snapshot_.islands = last_step_.islands;
-    snapshot_.bodies = sim_->scene().bodies.size();
-    snapshot_.models = models_.size();
+    snapshot_.bodies = world_->sim().scene().bodies.size();
+    snapshot_.models = world_->models().models().size();
     snapshot_.friction_sets = FrictionSetSummary();
-    snapshot_.solver = std::string(SolverTypeName(sim_->options().solver.type));
+    snapshot_.solver = std::string(SolverTypeName(world_->sim().options().solver.type));
     snapshot_.time_step = tick_;
     snapshot_.accuracy = accuracy_;
     snapshot_.adaptive = stepper_ ? stepper_->statistics() : AdaptiveStatistics();
     snapshot_.pace = pace_;
     snapshot_.fault = fault_;
     snapshot_.faults = faults_;
+    snapshot_.lost.clear();
+    const Scene& scene = world_->sim().scene();
+    for (const world::LostBody& lost : world::FindLostBodies(scene, world_->sim().state())) {
+      snapshot_.lost.push_back(scene.bodies[static_cast<std::size_t>(lost.body)].name + " " +
+                               world::DescribeLostBody(lost));
+    }
+  }
+  for (const std::string& lost : snapshot_.lost) {
+    if (std::find(logged_lost_.begin(), logged_lost_.end(), lost) != logged_lost_.end()) continue;
+    logged_lost_.push_back(lost);
+    ROS_WARN_STREAM("nonsmooth_sim: body " << lost);
   }
   // over the wall time the integrator ran in this period (not the paused time), and the sim time
   // it advanced in it (not ~step calls)
@@ -590,6 +611,10 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   const double steps = static_cast<double>(std::max<std::int64_t>(p.steps, 1));
   if (!s.fault.empty()) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, s.fault);
+  } else if (!s.lost.empty()) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "%zu bodies can no longer touch anything: body %s%s", s.lost.size(),
+                    s.lost.front().c_str(), s.lost.size() > 1 ? "; ..." : "");
   } else if (p.unconverged > 0) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lld of %lld steps: contact solver not converged",
@@ -631,22 +656,18 @@ void SimulationNode::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("models", s.models);
   status.add("bodies", s.bodies);
   status.add("faults (failed steps) in total", s.faults);
+  status.add("bodies that can no longer touch anything", s.lost.size());
+  for (std::size_t k = 0; k < s.lost.size() && k < kMaxLostListed; ++k) {
+    status.add("lost body " + std::to_string(k + 1), s.lost[k]);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
 // lookups
 
-int SimulationNode::BodyIndex(const std::string& name) const {
-  const auto& bodies = sim_->scene().bodies;
-  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
-    if (bodies[b].name == name) return b;
-  }
-  return -1;
-}
-
 std::string SimulationNode::FrictionSetSummary() const {
   // "sphere" when all collisions on bodies agree, else "big_sphere: exact, peg_sphere: coulomb"
-  const Scene& scene = sim_->scene();
+  const Scene& scene = world_->sim().scene();
   std::vector<const Collider*> on_bodies;
   for (const Collider& c : scene.colliders) {
     if (c.body != kWorld) on_bodies.push_back(&c);

@@ -5,9 +5,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -23,6 +26,25 @@ const char* KindOf(mode_t mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
 }
+
+// Where a document begins: all the event parser is asked for when the documents are counted.
+class DocumentStart final : public YAML::EventHandler {
+ public:
+  YAML::Mark mark;
+
+  void OnDocumentStart(const YAML::Mark& at) override { mark = at; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
 
 [[noreturn]] void Refuse(const std::string& reason) { throw std::invalid_argument(reason); }
 
@@ -167,6 +189,26 @@ void CheckYamlText(std::string_view text, std::size_t max_bytes) {
       if (c != ' ' && c != '\t') previous = c;
     }
     start = end + 1;
+  }
+}
+
+YAML::Node LoadOneYamlDocument(const std::string& text, std::size_t max_bytes) {
+  CheckYamlText(text, max_bytes);
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentStart first;
+    if (!parser.HandleNextDocument(first)) return YAML::Node();
+    DocumentStart second;
+    if (parser.HandleNextDocument(second)) {
+      throw YamlTextError(second.mark.line + 1, second.mark.column + 1,
+                          "a second YAML document (after --- or ..., or a token outside the "
+                          "first, such as a \",\" outside brackets); allowed: one");
+    }
+    // parsed again into a tree: yaml-cpp's tree builder is not part of its public interface
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw YamlTextError(e.mark.line + 1, e.mark.column + 1, "not valid YAML: " + e.msg);
   }
 }
 

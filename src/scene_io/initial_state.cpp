@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <utility>
 
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -31,12 +31,6 @@ constexpr Key kKeys[] = {
 };
 
 int Line(const YAML::Node& node) { return node.Mark().line + 1; }
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 // The bound of key `name` on `value` (initial_state.h); throws std::invalid_argument "<reason>".
 void CheckKey(const std::string& name, const Eigen::Vector3d& value) {
@@ -177,27 +171,17 @@ void CheckInitialAngularVelocity(const std::string& what, const Eigen::Vector3d&
 
 InitialStateSpec ParseInitialStateYaml(const std::string& yaml_text) {
   // the bounds before yaml-cpp allocates anything (bounded_input.h)
-  try {
-    CheckYamlText(yaml_text);
-  } catch (const std::invalid_argument& e) {
-    throw InitialStateError(std::string("initial state: ") + e.what());
-  }
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw InitialStateError("initial state (line " + std::to_string(e.mark.line + 1) +
-                            ", column " + std::to_string(e.mark.column + 1) +
-                            "): not valid YAML: " + e.msg);
-  }
-  if (documents.size() > 1) {
-    Fail("the text", Line(documents[1]),
-         "holds " + std::to_string(documents.size()) +
-             " YAML documents (a second one after --- or text after ...); allowed: one");
-  }
+  const YAML::Node root = [&] {
+    try {
+      return LoadOneYamlDocument(yaml_text);
+    } catch (const YamlTextError& e) {
+      throw InitialStateError("initial state (line " + std::to_string(e.line) + ", column " +
+                              std::to_string(e.column) + "): " + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InitialStateError(std::string("initial state: ") + e.what());
+    }
+  }();
   InitialStateSpec spec;
-  if (documents.empty()) return spec;  // no document
-  const YAML::Node root = documents.front();
   if (root.IsNull()) return spec;  // an empty document
   if (!root.IsMap()) {
     Fail("the document", Line(root), "not a map; expected the key bodies: {<link>: {...}}");

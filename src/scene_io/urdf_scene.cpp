@@ -11,10 +11,10 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -100,12 +100,6 @@ struct MassProperties {
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 std::string FormatVector(const Eigen::Vector3d& v) {
   return "(" + Format(v.x()) + ", " + Format(v.y()) + ", " + Format(v.z()) + ")";
@@ -292,6 +286,7 @@ class Builder {
     result_.warnings = xml_.warnings;
     CheckExtensionReferences();
     result_.scene.gravity = Eigen::Vector3d(0.0, 0.0, -options_.gravity);
+    result_.scene.collision_table = options_.collision_table;
     const urdf::Link& root = *model_.getRoot();
     Collect(root, root.inertial ? GroupKind::kFree : GroupKind::kWorld, "",
             Eigen::Isometry3d::Identity());
@@ -413,6 +408,7 @@ class Builder {
                         "inertial");
       }
       AddColliders(*member.link, group.world_pose * member.pose, kWorld);
+      result_.fixed_links.push_back({member.link->name, kWorld, group.world_pose * member.pose});
     }
   }
 
@@ -440,7 +436,9 @@ class Builder {
     std::vector<std::string> merged;
     for (const Member& member : group.members) {
       AddColliders(*member.link, link_in_body * member.pose, index);
-      if (member.link != &link) merged.push_back(member.link->name);
+      if (member.link == &link) continue;
+      merged.push_back(member.link->name);
+      result_.fixed_links.push_back({member.link->name, index, member.pose});
     }
     // the body as a whole (links merged): its mass, its inertia against its size, its start
     double extent = 0.0;
@@ -596,7 +594,7 @@ class Builder {
           const auto y = std::find_if(seen[b].begin(), seen[b].end(),
                                       [&](const Seen& s) { return s.body != x.body; });
           if (y == seen[b].end()) continue;
-          if (FindCollideFunction(ta, tb) == nullptr) {
+          if (result_.scene.collision_table.Find(ta, tb) == nullptr) {
             result_.warnings.push_back(
                 "urdf: no collide function for " + std::string(ShapeTypeName(ta)) + "-" +
                 std::string(ShapeTypeName(tb)) + " pairs (e.g. colliders " + Quoted(*x.name) +

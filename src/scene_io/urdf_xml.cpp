@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "nonsmooth_sim/scene_io/bounded_input.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -76,12 +77,6 @@ bool NumbersAttribute(const XMLElement* element, const char* name, std::size_t c
     }
   }
   return true;
-}
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 // "[low, high] unit" of an error line.

@@ -11,13 +11,16 @@
 #include <map>
 #include <sstream>
 
+#include "nonsmooth_sim/core/constants.h"
+#include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using scene_io::Format;
+
 constexpr double kMinTimeStep = 1e-7;   // [s], as ValidateSimulatorOptions
 constexpr double kMaxTimeStep = 1e-2;   // [s]
 constexpr double kMaxDuration = 1e5;    // [s], keeps the step count far inside a long
@@ -28,12 +31,6 @@ constexpr long kMaxIterationsLimit = kMaxSimulatorIterations;
 struct Error {
   std::string message;
 };
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 Error BadValue(const std::string& option, const std::string& value, const std::string& allowed) {
   return {"invalid value '" + value + "' for " + option + ": expected " + allowed};
@@ -186,6 +183,10 @@ const std::map<std::string, Setter>& ValueOptions() {
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.initial_path = ParsePath(o, v);
        }},
+      {"--schedule",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.schedule_path = ParsePath(o, v);
+       }},
       {"--csv",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.csv_path = ParsePath(o, v);
@@ -215,6 +216,8 @@ std::string UsageText() {
        "  --initial FILE        initial state of a --urdf scene (YAML, bodies: {<link>:\n"
        "                        {position, orientation, linear_velocity, angular_velocity}});\n"
        "                        default: the URDF pose, at rest\n"
+       "  --schedule FILE       timed events of a --urdf scene (YAML: spawn, wrench,\n"
+       "                        set_state, delete; docs/simulate.md); fixed steps only\n"
        "  --friction-set NAME   "
     << FrictionSetNameList()
     << " (default sphere)\n"
@@ -352,6 +355,10 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
     }
     if (config.accuracy.min_time_step > config.accuracy.max_time_step) {
       throw Error{"--min-dt must not exceed --max-dt"};
+    }
+    if (!config.schedule_path.empty() &&
+        (config.urdf_path.empty() || config.accuracy.tolerance > 0.0)) {
+      throw Error{"--schedule needs --urdf and fixed steps (not --accuracy)"};
     }
     if (!config.initial_path.empty() && config.urdf_path.empty()) {
       throw Error{"--initial needs --urdf (the built-in Tippe-Top takes --inclination, --spin)"};

@@ -18,6 +18,7 @@ struct RunConfig {
   TippeTopInitialConditions initial; ///< θ0, spin (the built-in Tippe-Top only)
   std::string urdf_path;             ///< empty: the built-in Tippe-Top (tippe_top.h)
   std::string initial_path;          ///< YAML initial state of a URDF scene; empty: URDF pose
+  std::string schedule_path;         ///< --schedule: YAML events of a URDF scene; empty: none
   bool friction_set_given = false;   ///< --friction-set was given (a URDF's own sets otherwise)
   bool mu_given = false;             ///< --mu was given
   bool contact_radius_given = false; ///< --contact-radius was given

@@ -20,6 +20,9 @@
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
+#include "nonsmooth_sim/scene_io/schedule.h"
+#include "nonsmooth_sim/world/world.h"
+#include "schedule_run.h"
 #include "nonsmooth_sim/scene_io/one_line.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 #include "progress.h"
@@ -126,15 +129,37 @@ void WarnExplicitGyroscopicUnsafe(double dt_omega, double t, double dt) {
                kExplicitGyroscopicMaxDtOmega * dt / dt_omega);
 }
 
-// The scene: a URDF (with the options that override its laws, and a YAML start), or the
-// built-in Tippe-Top. Throws std::invalid_argument (a bad file) with one line.
-Scene BuildScene(const RunConfig& config) {
-  if (config.urdf_path.empty()) return MakeTippeTopScene(config.parameters, config.initial);
+// The collision table of every scene of a run (the URDF's, the built-in Tippe-Top's, the
+// scheduled models'): the core's closed forms, and FCL for the convex pairs without one (box–box,
+// cylinder–box, ...).
+CollisionTable RunCollisionTable() {
+  CollisionTable table = CollisionTable::Defaults();
+  RegisterFclPairs(&table);
+  return table;
+}
+
+// The loader's options of a URDF: the laws the command line overrides, the run's collision table.
+scene_io::UrdfSceneOptions UrdfOptions(const RunConfig& config) {
   scene_io::UrdfSceneOptions options;
+  options.collision_table = RunCollisionTable();
   if (config.friction_set_given) options.friction_set = config.parameters.friction_set;
   if (config.mu_given) options.mu = config.parameters.mu;
   if (config.contact_radius_given) options.contact_radius = config.parameters.contact_radius;
-  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, options);
+  return options;
+}
+
+// The scene: a URDF (with the options that override its laws, and a YAML start), or the
+// built-in Tippe-Top; `name` its model's name. Throws std::invalid_argument (a bad file) with
+// one line.
+Scene BuildScene(const RunConfig& config, std::string* name) {
+  *name = "tippe_top";
+  if (config.urdf_path.empty()) {
+    Scene scene = MakeTippeTopScene(config.parameters, config.initial);
+    scene.collision_table = RunCollisionTable();  // scheduled models may bring boxes
+    return scene;
+  }
+  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, UrdfOptions(config));
+  *name = urdf.robot_name;
   for (const std::string& warning : urdf.warnings) {
     std::fprintf(stderr, "simulate: warning: %s\n", warning.c_str());
   }
@@ -162,14 +187,29 @@ void ReportInitialOverlaps(const Simulator& simulator) {
   }
 }
 
+// Bodies that can no longer touch anything (world/lost_bodies.h): one warning each, when first
+// found.
+void CheckLostBodies(double t, const Simulator& simulator, RunMonitor* monitor,
+                     ProgressBar* progress) {
+  for (const LostBodyRecord& lost : monitor->CheckLostBodies(t, simulator)) {
+    progress->Finish();
+    std::fprintf(stderr, "simulate: warning: body \"%s\" %s (found at t = %.4g s)\n",
+                 lost.name.c_str(), lost.why.c_str(), lost.t);
+  }
+}
+
+// `schedule`: the events of --schedule before each step (nullptr: none).
 template <typename RecordRow>
-void RunFixed(const RunConfig& config, long steps, Simulator* simulator, RunMonitor* monitor,
-              ProgressBar* progress, const RecordRow& record_row) {
+void RunFixed(const RunConfig& config, long steps, world::World* world, ScheduleRunner* schedule,
+              RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
+  Simulator* simulator = &world->sim();
   const bool record = !config.csv_path.empty();
   const double dt = config.options.time_step;
   StepStatistics stats;
   bool warned = false;
+  const long check_steps = std::max(1L, std::lround(kLostBodyCheckInterval / dt));
   for (long step = 1; step <= steps; ++step) {
+    if (schedule != nullptr) schedule->Before(world, static_cast<double>(step - 1) * dt, dt);
     simulator->Step(&stats);
     const double t = static_cast<double>(step) * dt;
     if (!stats.state_finite) {
@@ -189,6 +229,7 @@ void RunFixed(const RunConfig& config, long steps, Simulator* simulator, RunMoni
       WarnExplicitGyroscopicUnsafe(stats.max_dt_omega, t, dt);
     }
     monitor->Observe(step, t, dt, *simulator, stats);
+    if (step % check_steps == 0) CheckLostBodies(t, *simulator, monitor, progress);
     if (record && (step % config.decimate == 0 || step == steps)) record_row(t, stats);
     progress->Update(step);
   }
@@ -208,6 +249,7 @@ void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* s
   const long steps = std::llround(config.duration / config.options.time_step);
   long step = 0;
   bool warned = false;
+  double next_check = kLostBodyCheckInterval;
   const auto observe = [&](const StepStatistics& s, double h) {
     ++step;
     if (s.explicit_gyroscopic_unsafe && !warned) {
@@ -230,13 +272,25 @@ void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* s
                    simulator->time());
       break;
     }
+    if (t >= next_check) {
+      CheckLostBodies(t, *simulator, monitor, progress);
+      next_check = t + kLostBodyCheckInterval;
+    }
     if (record) record_row(t, stats);
     progress->Update(std::min<long>(steps, std::lround(t / config.options.time_step)));
   }
 }
 
 int Run(const RunConfig& config) {
-  Simulator simulator(BuildScene(config), config.options);
+  // the world the node serves, over the same Simulator(scene, options)
+  std::string name;
+  Scene scene = BuildScene(config, &name);
+  world::World world(std::move(scene), name, config.options);
+  Simulator& simulator = world.sim();
+  std::optional<ScheduleRunner> schedule;
+  if (!config.schedule_path.empty()) {
+    schedule.emplace(scene_io::LoadScheduleFile(config.schedule_path), UrdfOptions(config));
+  }
   ReportInitialOverlaps(simulator);
   const long steps = std::llround(config.duration / config.options.time_step);
 
@@ -255,7 +309,11 @@ int Run(const RunConfig& config) {
   if (config.urdf_path.empty()) {
     tippe_csv.emplace(simulator, rows);
   } else {
-    body_csv.emplace(simulator, rows);
+    if (schedule) {
+      body_csv.emplace(schedule->BodyColumns(simulator.scene()), rows);
+    } else {
+      body_csv.emplace(simulator, rows);
+    }
   }
   auto record_row = [&](double t, const StepStatistics& s) {
     if (tippe_csv) tippe_csv->Record(t, simulator, s);
@@ -263,6 +321,7 @@ int Run(const RunConfig& config) {
   };
   RunMonitor monitor(config, simulator);
   ProgressBar progress(steps, config.duration, !config.quiet);
+  CheckLostBodies(0.0, simulator, &monitor, &progress);
   StepStatistics stats;
   if (record) record_row(0.0, stats);
 
@@ -274,7 +333,8 @@ int Run(const RunConfig& config) {
     RunAdaptive(config, &stepper, &simulator, &monitor, &progress, record_row);
     monitor.SetAdaptive(stepper.statistics());
   } else {
-    RunFixed(config, steps, &simulator, &monitor, &progress, record_row);
+    RunFixed(config, steps, &world, schedule ? &*schedule : nullptr, &monitor, &progress,
+             record_row);
   }
   const auto stop = std::chrono::steady_clock::now();
   const double cpu_time = ThreadCpuSeconds() - cpu_start;
@@ -303,8 +363,6 @@ int Run(const RunConfig& config) {
 
 int main(int argc, char** argv) {
   using namespace nonsmooth_sim::simulate;
-  // the convex pairs without a closed form (box–box, cylinder–box, ...) through FCL
-  nonsmooth_sim::RegisterFclPairs();
   const ParseResult parsed = ParseCommandLine(argc, argv);
   if (std::holds_alternative<HelpRequest>(parsed)) {
     std::fputs(UsageText().c_str(), stdout);

@@ -7,12 +7,13 @@
 #include <cstdio>
 #include <limits>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/tippe_top.h"
+#include "nonsmooth_sim/world/lost_bodies.h"
 
 namespace nonsmooth_sim::simulate {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Inclination thresholds of the summary [rad]: horizontal, peg touchdown (both spheres touch at
 // θ* ≈ 2.449), inverted.
 constexpr double kThetaHorizontal = 0.5 * kPi;
@@ -112,6 +113,20 @@ void RunMonitor::ObserveNonFinite(double t) {
   summary_.t_non_finite = t;
 }
 
+std::vector<LostBodyRecord> RunMonitor::CheckLostBodies(double t, const Simulator& simulator) {
+  std::vector<LostBodyRecord> found;
+  const Scene& scene = simulator.scene();
+  for (const world::LostBody& lost : world::FindLostBodies(scene, simulator.state())) {
+    const std::string& name = scene.bodies[static_cast<std::size_t>(lost.body)].name;
+    const auto seen = std::find_if(summary_.lost_bodies.begin(), summary_.lost_bodies.end(),
+                                   [&](const LostBodyRecord& r) { return r.name == name; });
+    if (seen != summary_.lost_bodies.end()) continue;
+    found.push_back({name, t, world::DescribeLostBody(lost)});
+    summary_.lost_bodies.push_back(found.back());
+  }
+  return found;
+}
+
 RunSummary RunMonitor::Finish(const Simulator& simulator) {
   const BodyState& s = simulator.state()[0];
   summary_.theta_final = Inclination(s);
@@ -198,9 +213,48 @@ BodyCsvRecorder::BodyCsvRecorder(const Simulator& simulator, long expected_rows)
   values_.reserve(static_cast<std::size_t>(expected_rows) * columns_.size());
 }
 
+BodyCsvRecorder::BodyCsvRecorder(const std::vector<std::string>& bodies, long expected_rows)
+    : bodies_(bodies) {
+  columns_ = {"t"};
+  for (const std::string& body : bodies) {
+    for (const char* field :
+         {"x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz"}) {
+      columns_.push_back(body + "/" + field);
+    }
+  }
+  for (const char* field :
+       {"energy", "closed_contacts", "islands", "max_penetration", "iterations", "converged"}) {
+    columns_.push_back(field);
+  }
+  values_.reserve(static_cast<std::size_t>(expected_rows) * columns_.size());
+}
+
 void BodyCsvRecorder::Record(double time, const Simulator& simulator, const StepStatistics& stats) {
   values_.push_back(time);
-  for (std::size_t b = 0; b < simulator.scene().bodies.size(); ++b) {
+  if (bodies_.empty()) {
+    for (std::size_t b = 0; b < simulator.scene().bodies.size(); ++b) AppendBody(simulator, b);
+  } else {
+    // by name: a body that is not there (not yet spawned, or deleted) writes NaN
+    for (const std::string& name : bodies_) {
+      std::size_t b = 0;
+      while (b < simulator.scene().bodies.size() && simulator.scene().bodies[b].name != name) ++b;
+      if (b < simulator.scene().bodies.size()) {
+        AppendBody(simulator, b);
+      } else {
+        values_.insert(values_.end(), 13, std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+  }
+  values_.push_back(simulator.Energy());
+  values_.push_back(stats.closed_contacts);
+  values_.push_back(stats.islands);
+  values_.push_back(stats.max_penetration);
+  values_.push_back(stats.solver.iterations);
+  values_.push_back(stats.solver.converged ? 1.0 : 0.0);
+}
+
+void BodyCsvRecorder::AppendBody(const Simulator& simulator, std::size_t b) {
+  {
     const BodyState& s = simulator.state()[b];
     // the link frame: r_S - A com_in_link; ω in the world
     const Eigen::Vector3d link =
@@ -221,12 +275,6 @@ void BodyCsvRecorder::Record(double time, const Simulator& simulator, const Step
                           omega.z()};
     values_.insert(values_.end(), std::begin(row), std::end(row));
   }
-  values_.push_back(simulator.Energy());
-  values_.push_back(stats.closed_contacts);
-  values_.push_back(stats.islands);
-  values_.push_back(stats.max_penetration);
-  values_.push_back(stats.solver.iterations);
-  values_.push_back(stats.solver.converged ? 1.0 : 0.0);
 }
 
 bool BodyCsvRecorder::Write(const std::string& path) const {

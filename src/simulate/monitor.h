@@ -13,6 +13,16 @@
 
 namespace nonsmooth_sim::simulate {
 
+/// A body that could no longer touch anything (world/lost_bodies.h), when it was first seen.
+struct LostBodyRecord {
+  std::string name;
+  double t = 0.0;    ///< [s] the check that found it (every kLostBodyCheckInterval)
+  std::string why;  ///< DescribeLostBody
+};
+
+/// [s] of simulated time between two checks for lost bodies.
+inline constexpr double kLostBodyCheckInterval = 0.1;
+
 struct RunSummary {
   RunConfig config;
   /// The built-in Tippe-Top (its observables below are set); false for a --urdf scene.
@@ -68,6 +78,7 @@ struct RunSummary {
   double mean_iterations = 0.0;
   int max_iterations = 0;
   long unconverged_steps = 0;
+  std::vector<LostBodyRecord> lost_bodies;  ///< in the order they were found
 };
 
 /// Accumulates RunSummary step by step without allocating.
@@ -79,6 +90,9 @@ class RunMonitor {
                const StepStatistics& stats);
   /// The step ending at t met a non-finite value and was not taken.
   void ObserveNonFinite(double t);
+  /// At the start and every kLostBodyCheckInterval: the bodies that can no longer touch
+  /// anything, recorded once each; returns those found now for the first time.
+  std::vector<LostBodyRecord> CheckLostBodies(double t, const Simulator& simulator);
   RunSummary Finish(const Simulator& simulator);
   void SetAdaptive(const AdaptiveStatistics& statistics) { summary_.adaptive = statistics; }
 
@@ -111,12 +125,17 @@ class CsvRecorder {
 class BodyCsvRecorder {
  public:
   BodyCsvRecorder(const Simulator& simulator, long expected_rows);
+  /// Columns for the bodies named `bodies` (`simulate --schedule`: every body the run will
+  /// hold); a body the simulator does not hold at a row writes NaN.
+  BodyCsvRecorder(const std::vector<std::string>& bodies, long expected_rows);
   void Record(double time, const Simulator& simulator, const StepStatistics& stats);
   bool Write(const std::string& path) const;
 
  private:
   std::vector<std::string> columns_;
   std::vector<double> values_;
+  std::vector<std::string> bodies_;  ///< by name (second constructor); empty: every body in order
+  void AppendBody(const Simulator& simulator, std::size_t b);  ///< its 13 values
 };
 
 /// Writes header and rows (numbers with 15 significant digits); false if it cannot.

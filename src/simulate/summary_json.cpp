@@ -2,6 +2,7 @@
 // the README read them).
 #include <Eigen/Core>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -22,6 +23,11 @@ class JsonObject {
   }
   void Add(const char* key, double value) {
     Key(key);
+    // JSON has no inf or NaN (a run without contacts has no smallest gap): null
+    if (!std::isfinite(value)) {
+      text_ += "null";
+      return;
+    }
     // 15 significant digits: times k·Δt print as 1.3695, not 1.3695000000000002
     char buffer[32];
     const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
@@ -59,6 +65,7 @@ class JsonObject {
 };
 
 std::string Number(double value) {
+  if (!std::isfinite(value)) return "null";  // as JsonObject::Add
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
                                     std::chars_format::general, kSignificantDigits);
@@ -72,19 +79,40 @@ std::string Array(const Vector& v) {
   return out + "]";
 }
 
+// "text" with " and \ escaped (URDF names may hold them; they hold no control characters)
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 // {"<link>": {"position": [...], "orientation": [qx, qy, qz, qw], "linear_velocity": [...],
 // "angular_velocity": [...]}, ...}: the YAML initial-state convention, so a run can continue
 std::string Bodies(const RunSummary& s) {
   std::string out = "{";
   for (std::size_t b = 0; b < s.body_names.size(); ++b) {
     const BodyState& state = s.final_state[b];
-    out += (b > 0 ? ",\n    \"" : "\n    \"") + s.body_names[b] + "\": {\"position\": " +
+    out += (b > 0 ? ",\n    " : "\n    ") + Quoted(s.body_names[b]) + ": {\"position\": " +
            Array(s.final_link_position[b]) + ", \"orientation\": " +
            Array(state.orientation.coeffs()) + ", \"linear_velocity\": " +
            Array(state.linear_velocity) + ", \"angular_velocity\": " +
            Array(state.angular_velocity) + "}";
   }
   return out + "\n  }";
+}
+
+// {"<body>": {"t": ..., "why": "..."}, ...}: the bodies that could no longer touch anything
+std::string LostBodies(const RunSummary& s) {
+  std::string out = "{";
+  for (std::size_t k = 0; k < s.lost_bodies.size(); ++k) {
+    const LostBodyRecord& r = s.lost_bodies[k];
+    out += (k > 0 ? ", " : "") + Quoted(r.name) + ": {\"t\": " + Number(r.t) +
+           ", \"why\": " + Quoted(r.why) + "}";
+  }
+  return out + "}";
 }
 
 }  // namespace
@@ -171,6 +199,7 @@ bool WriteSummaryJson(const RunSummary& s, const std::string& path) {
   json.Add("max_islands", s.max_islands);
   json.Add("max_penetration", s.max_penetration);
   json.AddRaw("bodies", Bodies(s));
+  json.AddRaw("lost_bodies", LostBodies(s));
 
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) return false;

@@ -2,7 +2,8 @@
 //
 //  - FCL's conventions, on FCL directly: the normal points from o1 to o2, the nearest points are
 //    in the world frame (a rotated o1 would show a local frame).
-//  - Registration: RegisterFclPairs() fills exactly the pairs without a closed form.
+//  - Registration: RegisterFclPairs fills exactly the pairs without a closed form, in the table it
+//    is given.
 //  - Against the closed forms: CollideFcl registered in place of sphere–sphere, sphere–box and
 //    capsule–capsule, and on spheres written as ellipsoids (a, a, a), which FCL handles by its
 //    general path (MPR, refined) rather than its sphere formulas: gap and normal at 1000
@@ -77,15 +78,18 @@ TEST(FclConventions, NormalFromO1ToO2AndWorldNearestPoints) {
 }
 
 TEST(RegisterFclPairs, FillsExactlyThePairsWithoutClosedForm) {
-  RegisterFclPairs();
+  CollisionTable table = CollisionTable::Defaults();
+  RegisterFclPairs(&table);
   for (const auto& pair : kFclPairs) {
-    EXPECT_EQ(FindCollideFunction(pair[0], pair[1]), &CollideFcl);
-    EXPECT_EQ(FindCollideFunction(pair[1], pair[0]), &CollideFcl);
+    EXPECT_EQ(table.Find(pair[0], pair[1]), &CollideFcl);
+    EXPECT_EQ(table.Find(pair[1], pair[0]), &CollideFcl);
   }
-  EXPECT_EQ(FindCollideFunction(ShapeType::kSphere, ShapeType::kSphere), &CollideSphereSphere);
-  EXPECT_EQ(FindCollideFunction(ShapeType::kSphere, ShapeType::kBox), &CollideSphereBox);
-  EXPECT_EQ(FindCollideFunction(ShapeType::kPlane, ShapeType::kPlane), nullptr);
-  EXPECT_NE(FindCollideFunction(ShapeType::kPlane, ShapeType::kBox), &CollideFcl);
+  EXPECT_EQ(table.Find(ShapeType::kSphere, ShapeType::kSphere), &CollideSphereSphere);
+  EXPECT_EQ(table.Find(ShapeType::kSphere, ShapeType::kBox), &CollideSphereBox);
+  EXPECT_EQ(table.Find(ShapeType::kPlane, ShapeType::kPlane), nullptr);
+  EXPECT_NE(table.Find(ShapeType::kPlane, ShapeType::kBox), &CollideFcl);
+  // only the table it is given
+  EXPECT_EQ(CollisionTable::Defaults().Find(ShapeType::kBox, ShapeType::kBox), nullptr);
 }
 
 // Random pair of shapes near contact along a random direction d: p the support point of A along
@@ -118,7 +122,10 @@ constexpr double kClosedFormNormalTolerance = 3e-5;
 void ExpectMatchesClosedForm(ShapeType type_a, ShapeType type_b, CollideFunction reference,
                              bool spheres_as_ellipsoids) {
   constexpr double kMargin = 0.05;
-  RegisterFclPairs();  // the ellipsoid pairs
+  // the ellipsoid pairs by FCL, and CollideFcl in place of the closed form
+  CollisionTable collision_table = CollisionTable::Defaults();
+  RegisterFclPairs(&collision_table);
+  collision_table.Register(type_a, type_b, &CollideFcl);
   std::mt19937 rng(kSeed);
   double gap_error = 0.0;
   double normal_error = 0.0;
@@ -134,11 +141,9 @@ void ExpectMatchesClosedForm(ShapeType type_a, ShapeType type_b, CollideFunction
     ContactGeometry expected[kMaxPairContacts];
     ContactGeometry actual[kMaxPairContacts];
     ASSERT_EQ(reference(a, s.pose_a, b, s.pose_b, kMargin, expected), 1);
-    // through the table, CollideFcl registered in place of the closed form
-    const CollideFunction closed_form = FindCollideFunction(type_a, type_b);
-    RegisterCollideFunction(type_a, type_b, &CollideFcl);
-    const int count = Collide(as_fcl(a), s.pose_a, as_fcl(b), s.pose_b, kMargin, actual);
-    RegisterCollideFunction(type_a, type_b, closed_form);
+    // through the table
+    const int count =
+        collision_table.Collide(as_fcl(a), s.pose_a, as_fcl(b), s.pose_b, kMargin, actual);
     ASSERT_EQ(count, 1) << "pose " << i;
     EXPECT_TRUE(WellFormed(actual[0], 1e-12));
     EXPECT_NEAR(actual[0].gap, expected[0].gap, kClosedFormGapTolerance) << "pose " << i;
@@ -260,7 +265,8 @@ TEST(FclPairs, BoxRestingOnBoxFaceOnFace) {
 // exactly touching shapes) and +1e-4 (within the margin): one contact, that gap, a vertical
 // normal, point_b at the shape's lowest point.
 TEST(FclPairs, ShapesRestingOnABoxHaveAVerticalNormal) {
-  RegisterFclPairs();
+  CollisionTable collision_table = CollisionTable::Defaults();
+  RegisterFclPairs(&collision_table);
   const Shape table = Shape::Box({1.0, 1.0, 0.1});
   const Eigen::Isometry3d pose_table = Pose(Eigen::Matrix3d::Identity(), {0, 0, -0.1});
   struct Resting {
@@ -279,7 +285,7 @@ TEST(FclPairs, ShapesRestingOnABoxHaveAVerticalNormal) {
     for (double height : {-1e-4, 0.0, 1e-4}) {
       const Eigen::Isometry3d pose = Pose(c.rotation, {0.3, 0.2, c.centre_height + height});
       ContactGeometry out[kMaxPairContacts];
-      const int count = Collide(table, pose_table, c.shape, pose, 1e-3, out);
+      const int count = collision_table.Collide(table, pose_table, c.shape, pose, 1e-3, out);
       const std::string where =
           std::string(ShapeTypeName(c.shape.type)) + " at " + std::to_string(height);
       ASSERT_EQ(count, 1) << where;
@@ -296,7 +302,8 @@ TEST(FclPairs, ShapesRestingOnABoxHaveAVerticalNormal) {
 
 // Collide() in both orders through the table: the flipped result, bit for bit (the same call).
 TEST(FclPairs, SwappingTheShapesFlipsTheResult) {
-  RegisterFclPairs();
+  CollisionTable collision_table = CollisionTable::Defaults();
+  RegisterFclPairs(&collision_table);
   std::mt19937 rng(kSeed);
   for (const auto& pair : kFclPairs) {
     if (pair[0] == pair[1]) continue;
@@ -305,8 +312,8 @@ TEST(FclPairs, SwappingTheShapesFlipsTheResult) {
                                       Uniform(rng, -kMaxDepth, 0.01));
       ContactGeometry forward[kMaxPairContacts];
       ContactGeometry backward[kMaxPairContacts];
-      const int count = Collide(s.a, s.pose_a, s.b, s.pose_b, 0.05, forward);
-      ASSERT_EQ(Collide(s.b, s.pose_b, s.a, s.pose_a, 0.05, backward), count);
+      const int count = collision_table.Collide(s.a, s.pose_a, s.b, s.pose_b, 0.05, forward);
+      ASSERT_EQ(collision_table.Collide(s.b, s.pose_b, s.a, s.pose_a, 0.05, backward), count);
       for (int k = 0; k < count; ++k) {
         EXPECT_EQ(backward[k].gap, forward[k].gap);
         EXPECT_EQ(backward[k].point_a, forward[k].point_b);

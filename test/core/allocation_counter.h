@@ -1,5 +1,6 @@
 // Counts every heap allocation of a test binary, for the "no heap allocation" assertions of
-// contact_solver_test.cpp and dynamics_test.cpp: nonsmooth_sim::test::HeapAllocations() is the
+// contact_solver_contract_test.cpp, contact_solver_mapped_drilling_test.cpp and step_test.cpp:
+// nonsmooth_sim::test::HeapAllocations() is the
 // number of allocations made so far by any thread (frees are not counted); a test takes the
 // difference around the code under test.
 //

@@ -1,4 +1,4 @@
-// Bounded work (issue 11): every knob that multiplies the work of a solve or a step has an upper
+// Bounded work: every knob that multiplies the work of a solve or a step has an upper
 // bound in the core's validation, so that no accepted setting can make one step run for minutes.
 // A hostile-user run set max_iterations = 2147483647 and relaxation = 4.9e-324 through
 // ~set_solver_properties: both were accepted, and the next step iterated 2^31 times. Each

@@ -16,11 +16,11 @@
 #include <utility>
 
 #include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/shape.h"
 
 namespace nonsmooth_sim::collision_test {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr unsigned kSeed = 12345;
 constexpr int kPoses = 1000;

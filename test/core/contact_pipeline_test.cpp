@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/overlaps.h"
 #include "nonsmooth_sim/core/simulator.h"
@@ -15,8 +16,6 @@ namespace {
 
 using test::AddGround;
 using test::SphereCollider;
-
-constexpr double kPi = 3.14159265358979323846;
 
 RigidBody Ball(const std::string& name, double mass, double radius) {
   RigidBody body;

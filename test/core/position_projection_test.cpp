@@ -65,8 +65,9 @@ struct Projection {
         const Collider& cb = colliders[static_cast<std::size_t>(b)];
         if (cb.body == kWorld || ca.body == cb.body) continue;
         ContactGeometry g[kMaxPairContacts];
-        const int count = Collide(ca.shape, ColliderWorldPose(model.scene, state, a), cb.shape,
-                                  ColliderWorldPose(model.scene, state, b), 0.0, g);
+        const int count = model.scene.collision_table.Collide(
+            ca.shape, ColliderWorldPose(model.scene, state, a), cb.shape,
+            ColliderWorldPose(model.scene, state, b), 0.0, g);
         for (int k = 0; k < count; ++k) {
           if (g[k].gap > 0.0) continue;
           if (data.closed_count == data.closed.size()) data.closed.emplace_back();
@@ -94,10 +95,11 @@ struct Projection {
   // the gaps of the pair (first, second) at `state`, by the collision table, by feature
   std::map<int, double> Gaps(int first, int second) const {
     ContactGeometry g[kMaxPairContacts];
-    const int count = Collide(model.scene.colliders[static_cast<std::size_t>(first)].shape,
-                              ColliderWorldPose(model.scene, state, first),
-                              model.scene.colliders[static_cast<std::size_t>(second)].shape,
-                              ColliderWorldPose(model.scene, state, second), 1.0, g);
+    const int count = model.scene.collision_table.Collide(
+        model.scene.colliders[static_cast<std::size_t>(first)].shape,
+        ColliderWorldPose(model.scene, state, first),
+        model.scene.colliders[static_cast<std::size_t>(second)].shape,
+        ColliderWorldPose(model.scene, state, second), 1.0, g);
     std::map<int, double> gaps;
     for (int k = 0; k < count; ++k) gaps[g[k].feature] = g[k].gap;
     return gaps;

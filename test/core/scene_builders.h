@@ -1,7 +1,7 @@
 // Small builders and observers shared by the core tests: a sphere collider on a body, the ground
 // plane added last, the world pose of a collider at a state and its gap above the ground through
-// the collision table (collision.h), independent of the simulator's contact report (which lists
-// only the contacts closed at the midpoint of the last step).
+// the scene's collision table (collision_table.h), independent of the simulator's contact report
+// (which lists only the contacts closed at the midpoint of the last step).
 #ifndef NONSMOOTH_SIM_TEST_CORE_SCENE_BUILDERS_H_
 #define NONSMOOTH_SIM_TEST_CORE_SCENE_BUILDERS_H_
 
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/scene.h"
 
 namespace nonsmooth_sim {
@@ -56,9 +56,9 @@ inline double GapAbove(const Scene& scene, const std::vector<BodyState>& state, 
   const Collider& a = scene.colliders.at(static_cast<std::size_t>(ground));
   const Collider& b = scene.colliders.at(static_cast<std::size_t>(collider));
   ContactGeometry out[kMaxPairContacts];
-  const int count = Collide(a.shape, ColliderWorldPose(scene, state, ground), b.shape,
-                            ColliderWorldPose(scene, state, collider),
-                            std::numeric_limits<double>::infinity(), out);
+  const int count = scene.collision_table.Collide(
+      a.shape, ColliderWorldPose(scene, state, ground), b.shape,
+      ColliderWorldPose(scene, state, collider), std::numeric_limits<double>::infinity(), out);
   if (count <= 0) throw std::logic_error("no contact geometry for " + a.name + "/" + b.name);
   double gap = std::numeric_limits<double>::infinity();
   for (int k = 0; k < count; ++k) gap = std::min(gap, out[k].gap);

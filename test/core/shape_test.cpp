@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "collision_test_util.h"
+#include "nonsmooth_sim/core/constants.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-using collision_test::kPi;
 using collision_test::kSeed;
 
 const std::vector<Shape>& SolidShapes() {

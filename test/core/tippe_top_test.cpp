@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "scene_builders.h"
@@ -17,7 +18,6 @@
 namespace nonsmooth_sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kBig = kBigSphere;  // collider indices of MakeTippeTopScene
 constexpr int kPeg = kPegSphere;
 

@@ -27,7 +27,7 @@ NOT_IN_THE_TREE = {
 GENERATED = re.compile(r"^include/nonsmooth_sim/[A-Z]\w*\.h$")
 SOURCES = ["README.md", "CMakeLists.txt", "package.xml", "docs/*.md", "cmake/*.cmake",
            "launch/*.launch", "msg/*", "srv/*", "include/**/*.h", "src/**/*.cpp", "src/**/*.h",
-           "test/**/*.cpp", "test/**/*.h", "test/**/*.py", "test/**/*.test", "scripts/*",
+           "test/**/*.cpp", "test/**/*.h", "test/**/*.py", "test/**/*.test", "scripts/**/*",
            "bench/**/*.cpp", ".ci/*"]
 
 

@@ -1,6 +1,6 @@
 // Shared by the fuzz targets of test/fuzz: the contract every input is held to once a scene loads
 // or a request is accepted, and how a broken contract is reported (abort: libFuzzer keeps the
-// input as a crash file, scripts/fuzz prints its path).
+// input as a crash file, scripts/dev/fuzz prints its path).
 //
 // The contract of stepping (core/simulator.h, and what the node does with it in StepOnce):
 //  - Step() throws nothing (the node would turn an exception into a fault, but none is

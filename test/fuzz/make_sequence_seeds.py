@@ -10,7 +10,7 @@ import os
 
 # request numbers (the switch in LLVMFuzzerTestOneInput)
 STEP, RESET, RESET_WORLD, RESET_SIMULATION, SOLVER, SET_FRICTION, GET_FRICTION, WRENCH, \
-    CLEAR_WRENCH, RAW_WRENCH, RAW_STATE, RAW_TIME, ADD, REMOVE = 0, 3, 4, 5, 6, 7, 8, 9, 10, 11, \
+    CLEAR_WRENCH, RAW_WRENCH, RAW_STATE, RAW_TIME, SPAWN, DELETE = 0, 3, 4, 5, 6, 7, 8, 9, 10, 11, \
     12, 13, 14, 15
 # scenes (LLVMFuzzerInitialize)
 TIPPE_TOP, DUEL, DIE, COIN = 0, 1, 2, 3
@@ -41,12 +41,14 @@ SEEDS = {
     "solver_jacobi_implicit": [COIN, SOLVER, 0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1] + steps(24),
     # ~set_friction_set "coulomb" (index 3) for "" (contact index 0), steps
     "friction_coulomb": [DUEL, SET_FRICTION, 1, 3, 0, 0, 1, 0] + steps(24),
-    # ~apply_body_wrench force (1, 0, 0), torque 0, point 0; steps; ~clear_body_wrenches; steps
-    "wrench_die": [DIE, WRENCH, 1] + table(ONE) + table(ZERO) * 2 + table(ZERO) * 6 + steps(16) +
-                  [CLEAR_WRENCH, 1] + steps(8),
-    # AddBodies of the die with fresh names at offset (1, 0, 0), steps, RemoveBodies of body 0
-    "add_remove": [TIPPE_TOP, ADD, DIE, 1] + table(ONE) + table(ZERO) * 2 + steps(16) +
-                  [REMOVE, 1, 1, 0] + steps(16),
+    # ~apply_body_wrench on "die" (names: die, die), no reference frame, force (1, 0, 0), torque 0,
+    # point 0, from now, for 0.05 s; steps; ~clear_body_wrenches; steps
+    "wrench_die": [DIE, WRENCH, 1, 0, 0] + table(ONE) + table(ZERO) * 2 + table(ZERO) * 6 +
+                  [0, 0] + steps(16) + [CLEAR_WRENCH, 1] + steps(8),
+    # ~spawn_urdf_model of the die as "m1" (names: m1, 1m, a/b, "", tippe_top) in the world at
+    # the default pose (0.5, 0, 0.1); steps; ~delete_model "m1" (models: tippe_top, m1); steps
+    "spawn_delete": [TIPPE_TOP, SPAWN, DIE, 1, 0, 0, 0, 0] + steps(16) + [DELETE, 1, 1] +
+                    steps(16),
     # SetState with a huge angular velocity (the fault path), steps, ~reset_world, steps
     "fault_then_reset": [TIPPE_TOP, RAW_STATE, 2] + table(HUGE) * 3 + [1] + steps(8) +
                         [RESET_WORLD] + steps(8) + [RESET_SIMULATION] + steps(4),

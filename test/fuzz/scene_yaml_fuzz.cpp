@@ -1,6 +1,6 @@
 // libFuzzer target: the input bytes are an initial-state YAML file (scene_io/initial_state.h; the
 // node's ~initial_state and `simulate --initial`), applied the node's way (ConfiguredScene:
-// node::InitialState of body 0, then scene_io::ApplyInitialState) to three shipped scenes: the
+// world::InitialState of body 0, then scene_io::ApplyInitialState) to three shipped scenes: the
 // Tippe-Top (one body on two spheres), the duel (two bodies that meet) and the die (a box, corners
 // on the ground).
 //
@@ -18,7 +18,7 @@
 
 #include "fuzz_support.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/world/initial_conditions.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
@@ -32,7 +32,7 @@ constexpr int kSteps = 20;
 
 struct ShippedScene {
   scene_io::UrdfScene urdf;
-  std::vector<BodyState> start;  // node::InitialState(urdf, 0, {}): the configured start
+  std::vector<BodyState> start;  // world::InitialState(urdf, 0, {}): the configured start
 };
 
 std::vector<ShippedScene>& Scenes() {
@@ -102,12 +102,13 @@ void RunScene(const ShippedScene& shipped, const scene_io::InitialStateSpec& spe
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();
+  scene_io::UrdfSceneOptions options;
+  RegisterFclPairs(&options.collision_table);  // as the node and simulate load
   for (const char* name : {"tippe_top", "tippe_top_duel", "die"}) {
     ShippedScene s;
     s.urdf = scene_io::LoadUrdfFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/" + name +
-                                    ".urdf");
-    s.start = node::InitialState(s.urdf, 0, node::InitialConditions{});
+                                    ".urdf", options);
+    s.start = world::InitialState(s.urdf, 0, world::InitialConditions{});
     Scenes().push_back(std::move(s));
   }
   return 0;

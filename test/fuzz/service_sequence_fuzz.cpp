@@ -1,20 +1,19 @@
-// libFuzzer target: the input bytes, decoded by FuzzedDataProvider, are a sequence of requests
-// against an in-process core Simulator that mirror the node's services (src/node/node_services.cpp,
-// src/node/world_services.cpp) and the core's setters behind them:
+// libFuzzer target: the input bytes, decoded by FuzzedDataProvider, are a sequence of the node's
+// service requests against the real world::World the node serves (include/nonsmooth_sim/world):
 //
-//   ~step, ~reset, ~reset_world, ~reset_simulation, ~set_solver_properties, ~set_friction_set,
-//   ~get_friction_set, ~apply_body_wrench, ~clear_body_wrenches; and of the core alone:
-//   AddBodies, RemoveBodies, SetState, SetTime, SetExternalWrench with any value.
+//   ~step (the scheduled wrenches applied before each step, as the node does), ~reset,
+//   ~reset_world, ~reset_simulation, ~set_solver_properties, ~set_friction_set,
+//   ~get_friction_set, ~apply_body_wrench, ~clear_body_wrenches, ~spawn_urdf_model,
+//   ~delete_model; and of the core alone: SetState, SetTime, SetExternalWrench with any value.
 //
-// Each request is validated the node's way (node::ValidateInitialConditions and
-// node::InitialState are the node's own code, compiled in; ValidateSimulatorOptions, the name
-// lookups and the bounds of world_services.cpp) and then handed to the core's setter, which
+// The rules, names and bounds are the World's own (no copy here): a request goes to the World
+// call the node's handler makes, which validates it and hands it to the core's setter, which
 // validates again. Checked:
-//  - a rejected request (the node's validation or the core's throws) leaves the simulator bit for
-//    bit as it was: state, time, diverged(), options, scene sizes and names, every collider's and
-//    pair's friction set, the external wrenches;
-//  - only the documented exception types come out of a setter (std::invalid_argument, and
-//    std::out_of_range for indices);
+//  - a rejected request leaves the world bit for bit as it was: state, time, diverged(), options,
+//    scene sizes and names, every collider's and pair's friction set, the external wrenches, the
+//    models, the scheduled wrenches and the configured start;
+//  - only the documented exception types come out (std::invalid_argument, and
+//    std::out_of_range for indices of the core's setters);
 //  - an accepted request has the documented effect;
 //  - the state is finite or a fault is reported (diverged()), after every request and every step,
 //    and a simulator that is not diverged has a finite Energy() (SetState refuses a state whose
@@ -37,6 +36,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -44,9 +44,9 @@
 
 #include "fuzz_support.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
+#include "nonsmooth_sim/world/world.h"
 
 namespace {
 
@@ -60,11 +60,6 @@ constexpr std::size_t kMaxBodies = 6;
 // The node accepts up to kMaxSimulatorIterations (1e5); here an accepted larger cap is applied as
 // this one, so that an input stays in milliseconds (bounded_work_test covers the node's cap).
 constexpr int kFuzzMaxIterations = 2000;
-// world_services.cpp / simulation_node.h: |force|, |torque| <= kMaxExternalForce per request, at
-// most kMaxWrenches at once
-constexpr double kMaxExternalForce = 1e6;
-constexpr int kMaxWrenches = 1000;
-
 const double kInf = std::numeric_limits<double>::infinity();
 
 // Values at and around every bound the validation has, and the hostile ones.
@@ -122,6 +117,23 @@ struct Snapshot {
   std::vector<std::string> colliders;
   std::vector<FrictionSet> sets;  // per collider, then per pair (FrictionSetOf)
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> wrenches;
+  std::vector<std::string> models;      // names and parts of the registry
+  std::vector<double> scheduled;        // body, start, end of each scheduled wrench
+  std::vector<std::string> configured;  // the configured start's bodies
+  std::vector<BodyState> configured_state;
+
+  explicit Snapshot(const world::World& world) : Snapshot(world.sim()) {
+    for (const world::Model& m : world.models().models()) {
+      models.push_back(m.name + "|" + m.prefix + "|" + std::to_string(m.bodies.size()) + "|" +
+                       std::to_string(m.colliders.size()));
+      for (int b : m.bodies) models.push_back(std::to_string(b));
+    }
+    for (const world::ExternalWrench& x : world.wrenches().wrenches()) {
+      scheduled.insert(scheduled.end(), {static_cast<double>(x.body), x.start, x.end});
+    }
+    for (const RigidBody& b : world.configured_scene().bodies) configured.push_back(b.name);
+    configured_state = world.configured_scene().initial_state;
+  }
 
   explicit Snapshot(const Simulator& sim)
       : state(sim.state()), time(sim.time()), diverged(sim.diverged()), options(sim.options()) {
@@ -152,8 +164,17 @@ struct Snapshot {
            a.gyroscopic == b.gyroscopic && a.gap_correction == b.gap_correction;
   }
 
-  void RequireUnchanged(const Simulator& sim, const std::string& request) const {
-    const Snapshot now(sim);
+  void RequireUnchanged(const world::World& world, const std::string& request) const {
+    const Snapshot now(world);
+    Require(now.models == models, request + ": rejected, but the models changed");
+    Require(now.scheduled.size() == scheduled.size(),
+            request + ": rejected, but the wrench schedule changed");
+    for (std::size_t i = 0; i < scheduled.size(); ++i) {
+      Require(fuzz::SameBits(now.scheduled[i], scheduled[i]),
+              request + ": rejected, but a scheduled wrench changed");
+    }
+    Require(now.configured == configured && fuzz::SameBits(now.configured_state, configured_state),
+            request + ": rejected, but the configured start changed");
     Require(fuzz::SameBits(now.state, state), request + ": rejected, but the state changed");
     Require(fuzz::SameBits(now.time, time), request + ": rejected, but the time changed");
     Require(now.diverged == diverged, request + ": rejected, but diverged() changed");
@@ -170,9 +191,10 @@ struct Snapshot {
   }
 };
 
+// A shipped scene: the URDF the node starts with, and as a model to spawn (no ground).
 struct ShippedScene {
   scene_io::UrdfScene urdf;
-  Scene configured;  // the node's configured scene (ConfiguredScene with no parameters)
+  Scene model;
 };
 
 std::vector<ShippedScene>& Scenes() {
@@ -180,18 +202,16 @@ std::vector<ShippedScene>& Scenes() {
   return scenes;
 }
 
-// The node's world: its URDF and configured scene, and the simulator behind the services.
-struct World {
-  const ShippedScene* shipped = nullptr;
-  SimulatorOptions configured_options;  // parameters_.simulator
-  std::unique_ptr<Simulator> sim;
-  int wrenches = 0;  // accepted ~apply_body_wrench requests since the last clear (node: at most 1000)
+// The node's world for one input, with the fuzzer's bookkeeping.
+struct Session {
+  std::unique_ptr<world::World> world;
   int steps = 0;
-  int added = 0;  // models spawned (their names get this as suffix)
+  int spawned = 0;  // models spawned (a fresh name gets this as suffix)
   // a core-only request put a value beyond the node's bounds into the simulator (RawSetState,
-  // RawWrench): the node's sums of wrenches may overflow then (ApplyBodyWrench); the steps are
-  // held to the whole contract all the same
+  // RawWrench): the schedule's sums of wrenches may overflow then; the steps are held to the
+  // whole contract all the same
   bool beyond_node_bounds = false;
+  Simulator& sim() { return world->sim(); }
 };
 
 std::vector<std::string> BodyNames(const Simulator& sim) {
@@ -216,28 +236,32 @@ std::vector<std::string> ContactNames(const Simulator& sim, FuzzedDataProvider& 
 // ---------------------------------------------------------------------------------------------
 // the requests
 
-void Step(World& w, FuzzedDataProvider& in) {
+void Step(Session& w, FuzzedDataProvider& in) {
   const int n = in.ConsumeIntegralInRange<int>(1, 8);
   for (int k = 0; k < n && w.steps < kMaxSteps; ++k, ++w.steps) {
-    fuzz::StepUnderContract(*w.sim, "~step");
+    // as the node's StepOnce: the scheduled wrenches of the step, then the step
+    try {
+      w.world->ApplyScheduledWrenches(w.sim().options().time_step);
+    } catch (const std::exception& e) {
+      // a raw wrench or state beyond the node's bounds can make the sums overflow: the core
+      // refuses the non-finite wrench, as it refuses any
+      Require(w.beyond_node_bounds,
+              std::string("~step: the scheduled wrenches were refused: ") + e.what());
+    }
+    fuzz::StepUnderContract(w.sim(), "~step");
   }
 }
 
-// OnResetState: body (empty = the initial body 0), then the node's ValidateInitialConditions and
-// InitialState, then SetState.
-void Reset(World& w, FuzzedDataProvider& in) {
-  const Scene& urdf_scene = w.shipped->urdf.scene;
-  int body = 0;
+// OnResetState: World::Reset (a body of the start-up model, its initial conditions).
+void Reset(Session& w, FuzzedDataProvider& in) {
+  const Scene& urdf_scene = w.world->urdf().scene;
+  std::string body;
   if (in.ConsumeBool()) {  // a body name: one of the URDF's or anything
     std::vector<std::string> names;
     for (const RigidBody& b : urdf_scene.bodies) names.push_back(b.name);
-    const std::string name = PickName(in, names);
-    body = -1;
-    for (std::size_t b = 0; b < urdf_scene.bodies.size(); ++b) {
-      if (urdf_scene.bodies[b].name == name) body = static_cast<int>(b);
-    }
+    body = PickName(in, names);
   }
-  node::InitialConditions request;
+  world::InitialConditions request;
   if (in.ConsumeBool()) request.inclination = HostileDouble(in);
   if (in.ConsumeBool()) request.spin = HostileDouble(in);
   if (in.ConsumeBool()) request.position = HostileVector(in);
@@ -248,76 +272,62 @@ void Reset(World& w, FuzzedDataProvider& in) {
   if (in.ConsumeBool()) request.linear_velocity = HostileVector(in);
   if (in.ConsumeBool()) request.angular_velocity = HostileVector(in);
 
-  const Snapshot before(*w.sim);
-  std::vector<BodyState> state;
+  const Snapshot before(*w.world);
   try {
-    if (body < 0) throw std::invalid_argument("not a free body");
-    node::ValidateInitialConditions(request);
-    state = w.shipped->configured.initial_state;
-    if (body == 0) {
-      state = node::InitialState(w.shipped->urdf, body, request);
-    } else {
-      state[static_cast<std::size_t>(body)] =
-          node::InitialState(w.shipped->urdf, body, request)[static_cast<std::size_t>(body)];
-    }
+    w.world->Reset(body, request);
   } catch (const std::invalid_argument& e) {
-    fuzz::RequireMessage(e, "~reset validation");
-    before.RequireUnchanged(*w.sim, "~reset");
+    fuzz::RequireMessage(e, "~reset");
+    before.RequireUnchanged(*w.world, "~reset");
     return;
   } catch (const std::exception& e) {
-    Finding(std::string("~reset: the node's validation threw an undocumented type: ") + e.what());
+    Finding(std::string("~reset threw an undocumented type: ") + e.what());
   }
-  Require(fuzz::Finite(state), "~reset: a validated request gives a non-finite state");
-  try {
-    w.sim->SetState(state);
-  } catch (const std::invalid_argument& e) {
-    // Accepted rejections (the node's try block covers SetState, nothing changes): the world
-    // changed (bodies added or removed), so the URDF's start does not fit any more; or an
-    // orientation whose |q|² overflows (components ~1e300): ValidateInitialConditions lets it
-    // through (finite, non-zero), normalized() makes it zero and SetState rejects that.
-    const bool overflowing_orientation =
-        request.orientation && !std::isfinite(request.orientation->squaredNorm());
-    Require(state.size() != w.sim->scene().bodies.size() || overflowing_orientation,
-            std::string("~reset: SetState rejected a validated start: ") + e.what());
-    before.RequireUnchanged(*w.sim, "~reset");
-    return;
-  } catch (const std::exception& e) {
-    Finding(std::string("~reset: SetState threw an undocumented type: ") + e.what());
-  }
-  Require(!w.sim->diverged(), "~reset: diverged() survives SetState");
+  Require(fuzz::Finite(w.sim().state()), "~reset: an accepted start is not finite");
+  Require(!w.sim().diverged(), "~reset: diverged() survives the reset");
 }
 
-// OnResetWorld: the configured start (the node calls it without a try: it must not throw while
-// the world is the configured one).
-void ResetWorld(World& w) {
-  if (w.sim->scene().bodies.size() != w.shipped->configured.bodies.size()) return;
+// OnResetWorld: the configured start (the node calls it without a try: it must not throw).
+void ResetWorld(Session& w) {
   try {
-    w.sim->SetState(w.shipped->configured.initial_state);
+    w.world->ResetWorld();
   } catch (const std::exception& e) {
     Finding(std::string("~reset_world threw: ") + e.what());
+  }
+  // the configured start (SetState normalises the quaternions: those may differ in the last bit)
+  const std::vector<BodyState>& start = w.world->configured_scene().initial_state;
+  Require(w.sim().state().size() == start.size(), "~reset_world: the bodies changed");
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    const BodyState& s = w.sim().state()[i];
+    Require(s.position == start[i].position && s.linear_velocity == start[i].linear_velocity &&
+                s.angular_velocity == start[i].angular_velocity,
+            "~reset_world: the state is not the configured start");
   }
 }
 
 // OnResetSimulation: a fresh simulator with the configured scene and solver, the time kept.
-void ResetSimulation(World& w) {
-  const double time = w.sim->time();
+void ResetSimulation(Session& w) {
+  const double time = w.sim().time();
   try {
-    w.sim = std::make_unique<Simulator>(w.shipped->configured, w.configured_options);
-    w.sim->SetTime(time);
+    w.world->ResetSimulation();
   } catch (const std::exception& e) {
     Finding(std::string("~reset_simulation threw: ") + e.what());
   }
-  w.wrenches = 0;
-  w.beyond_node_bounds = false;  // the configured scene, no wrench
+  Require(fuzz::SameBits(w.sim().time(), time), "~reset_simulation: the time was not kept");
+  // a fresh simulator has no raw wrench; one whose every model was deleted keeps its simulator
+  w.beyond_node_bounds = false;
+  for (std::size_t b = 0; b < w.sim().scene().bodies.size(); ++b) {
+    const auto [f, t] = w.sim().ExternalWrench(static_cast<int>(b));
+    w.beyond_node_bounds = w.beyond_node_bounds || !f.isZero(0.0) || !t.isZero(0.0);
+  }
 }
 
 // OnSetSolverProperties: each field optional, names looked up, ValidateSimulatorOptions, SetOptions.
-void SetSolverProperties(World& w, FuzzedDataProvider& in) {
+void SetSolverProperties(Session& w, FuzzedDataProvider& in) {
   static const char* kSolvers[] = {"jacobi", "modified_jacobi", "gauss_seidel", "gauss-seidel",
                                    "GAUSS_SEIDEL"};
   static const char* kSchemes[] = {"explicit", "implicit_midpoint", "implicit"};
-  SimulatorOptions o = w.sim->options();
-  const Snapshot before(*w.sim);
+  SimulatorOptions o = w.sim().options();
+  const Snapshot before(*w.world);
   try {
     if (in.ConsumeBool()) o.time_step = HostileDouble(in);
     if (in.ConsumeBool()) o.solver.tolerance_rel = HostileDouble(in);
@@ -338,59 +348,59 @@ void SetSolverProperties(World& w, FuzzedDataProvider& in) {
     }
     ValidateSimulatorOptions(o);
     o.solver.max_iterations = std::min(o.solver.max_iterations, kFuzzMaxIterations);
-    w.sim->SetOptions(o);
+    w.sim().SetOptions(o);
   } catch (const std::invalid_argument& e) {
     fuzz::RequireMessage(e, "~set_solver_properties");
-    before.RequireUnchanged(*w.sim, "~set_solver_properties");
+    before.RequireUnchanged(*w.world, "~set_solver_properties");
     return;
   } catch (const std::exception& e) {
     Finding(std::string("~set_solver_properties threw an undocumented type: ") + e.what());
   }
-  Require(Snapshot::SameOptions(w.sim->options(), o),
+  Require(Snapshot::SameOptions(w.sim().options(), o),
           "~set_solver_properties: accepted, but the options are not the requested ones");
-  Require(fuzz::SameBits(w.sim->state(), before.state),
+  Require(fuzz::SameBits(w.sim().state(), before.state),
           "~set_solver_properties changed the state");
 }
 
 // OnSetFrictionSet: the set by name (unknown: rejected before the core), then SetFrictionSet
 // (the node catches std::invalid_argument only).
-void SetFrictionSet(World& w, FuzzedDataProvider& in) {
+void SetFrictionSet(Session& w, FuzzedDataProvider& in) {
   std::vector<std::string> set_names{"sphere_", "Exact", ""};
   for (FrictionSet s : kAllFrictionSets) set_names.emplace_back(FrictionSetName(s));
   const std::string set_name = PickName(in, set_names);
-  const std::string contact = PickName(in, ContactNames(*w.sim, in));
+  const std::string contact = PickName(in, ContactNames(w.sim(), in));
   const auto set = FrictionSetFromName(set_name);
   if (!set) return;  // the node answers "unknown friction set" without touching the simulator
-  const Snapshot before(*w.sim);
+  const Snapshot before(*w.world);
   try {
-    w.sim->SetFrictionSet(*set, contact);
+    w.sim().SetFrictionSet(*set, contact);
   } catch (const std::invalid_argument& e) {
     fuzz::RequireMessage(e, "~set_friction_set");
-    before.RequireUnchanged(*w.sim, "~set_friction_set");
+    before.RequireUnchanged(*w.world, "~set_friction_set");
     return;
   } catch (const std::exception& e) {
     Finding(std::string("~set_friction_set: SetFrictionSet threw what the node does not catch: ") +
             e.what());
   }
-  Require(fuzz::SameBits(w.sim->state(), before.state), "~set_friction_set changed the state");
-  const Scene& scene = w.sim->scene();
+  Require(fuzz::SameBits(w.sim().state(), before.state), "~set_friction_set changed the state");
+  const Scene& scene = w.sim().scene();
   if (contact.empty()) {
     for (const Collider& c : scene.colliders) {
       Require(c.law.friction_set == *set, "~set_friction_set \"\": a collider kept its set");
     }
   }
   if (!contact.empty()) {
-    Require(w.sim->FrictionSetOf(contact) == *set,
+    Require(w.sim().FrictionSetOf(contact) == *set,
             "~set_friction_set: accepted, but the contact does not have the set");
   }
 }
 
 // OnGetFrictionSet: FrictionSetOf (std::invalid_argument caught).
-void GetFrictionSet(World& w, FuzzedDataProvider& in) {
-  const std::string contact = PickName(in, ContactNames(*w.sim, in));
+void GetFrictionSet(Session& w, FuzzedDataProvider& in) {
+  const std::string contact = PickName(in, ContactNames(w.sim(), in));
   if (contact.empty()) return;
   try {
-    (void)w.sim->FrictionSetOf(contact);
+    (void)w.sim().FrictionSetOf(contact);
   } catch (const std::invalid_argument& e) {
     fuzz::RequireMessage(e, "~get_friction_set");
   } catch (const std::exception& e) {
@@ -398,69 +408,74 @@ void GetFrictionSet(World& w, FuzzedDataProvider& in) {
   }
 }
 
-// OnApplyBodyWrench: body by name, force and torque finite and |.| <= kMaxExternalForce, the point
-// of application within kMaxInitialCoordinate, at most kMaxWrenches; the wrenches of a body add
-// up (ApplyWrenches) into one SetExternalWrench.
-void ApplyBodyWrench(World& w, FuzzedDataProvider& in) {
-  const std::string name = PickName(in, BodyNames(*w.sim));
-  const Eigen::Vector3d force = HostileVector(in);
-  const Eigen::Vector3d torque = HostileVector(in);
-  const Eigen::Vector3d point = HostileVector(in);
-  int body = -1;
-  for (std::size_t b = 0; b < w.sim->scene().bodies.size(); ++b) {
-    if (w.sim->scene().bodies[b].name == name) body = static_cast<int>(b);
+// OnApplyBodyWrench: World::ApplyWrench with hostile values; accepted with a non-zero duration, it
+// is scheduled.
+void ApplyBodyWrench(Session& w, FuzzedDataProvider& in) {
+  std::vector<std::string> names = BodyNames(w.sim());
+  for (std::size_t b = 0; b < w.sim().scene().bodies.size(); ++b) {
+    names.push_back(w.world->BodyName(static_cast<int>(b)));
   }
-  const bool valid = body >= 0 && force.allFinite() && force.norm() <= kMaxExternalForce &&
-                     torque.allFinite() && torque.norm() <= kMaxExternalForce &&
-                     point.allFinite() &&
-                     point.norm() <= scene_io::kMaxInitialCoordinate && w.wrenches < kMaxWrenches;
-  if (!valid) return;  // the node answers without touching the simulator
-  const BodyState& s = w.sim->state()[static_cast<std::size_t>(body)];
-  const Eigen::Vector3d arm = point - s.position;
-  const auto [f, t] = w.sim->ExternalWrench(body);
-  const Eigen::Vector3d total_force = f + force;
-  const Eigen::Vector3d total_torque = t + torque + arm.cross(force);
-  // the node's sum stays below 1000 x (1e6 + 3.5e3 x 1e6); one of a raw wrench (1e308) overflows
-  if (w.beyond_node_bounds && !(total_force.allFinite() && total_torque.allFinite())) return;
+  world::WrenchRequest request;
+  request.body = PickName(in, names);
+  if (in.ConsumeBool()) request.reference_frame = PickName(in, names);
+  request.force = HostileVector(in);
+  request.torque = HostileVector(in);
+  request.point = HostileVector(in);
+  if (in.ConsumeBool()) request.start = HostileDouble(in);
+  request.duration = in.ConsumeBool() ? HostileDouble(in) : 0.05;
+  const Snapshot before(*w.world);
+  std::optional<world::ExternalWrench> applied;
   try {
-    w.sim->SetExternalWrench(body, total_force, total_torque);
+    applied = w.world->ApplyWrench(request);
+  } catch (const std::invalid_argument& e) {
+    fuzz::RequireMessage(e, "~apply_body_wrench");
+    before.RequireUnchanged(*w.world, "~apply_body_wrench");
+    return;
   } catch (const std::exception& e) {
-    Finding(std::string("~apply_body_wrench: SetExternalWrench rejected a validated wrench: ") +
-            e.what());
+    Finding(std::string("~apply_body_wrench threw an undocumented type: ") + e.what());
   }
-  ++w.wrenches;
+  Require(applied.has_value() == (request.duration != 0.0),
+          "~apply_body_wrench: accepted, but not scheduled iff its duration is not 0");
+  Require(w.world->wrenches().wrenches().size() ==
+              before.scheduled.size() / 3 + (applied ? 1 : 0),
+          "~apply_body_wrench: accepted, but the schedule did not grow by it");
+  Require(fuzz::SameBits(w.sim().state(), before.state), "~apply_body_wrench changed the state");
 }
 
-// OnClearBodyWrenches: a known body's wrench zeroed.
-void ClearBodyWrenches(World& w, FuzzedDataProvider& in) {
-  const std::string name = PickName(in, BodyNames(*w.sim));
-  for (std::size_t b = 0; b < w.sim->scene().bodies.size(); ++b) {
-    if (w.sim->scene().bodies[b].name != name) continue;
-    w.sim->SetExternalWrench(static_cast<int>(b), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-    const auto [f, t] = w.sim->ExternalWrench(static_cast<int>(b));
-    Require(f.isZero(0.0) && t.isZero(0.0), "~clear_body_wrenches: a wrench is left");
+// OnClearBodyWrenches: World::ClearWrenches; a known body's wrenches gone, in the core too.
+void ClearBodyWrenches(Session& w, FuzzedDataProvider& in) {
+  const std::string name = PickName(in, BodyNames(w.sim()));
+  const Snapshot before(*w.world);
+  if (!w.world->ClearWrenches(name)) {
+    before.RequireUnchanged(*w.world, "~clear_body_wrenches of no body");
+    return;
   }
-  w.wrenches = 0;
+  const int b = w.world->BodyIndex(name);
+  const auto [f, t] = w.sim().ExternalWrench(b);
+  Require(f.isZero(0.0) && t.isZero(0.0), "~clear_body_wrenches: a wrench is left");
+  for (const world::ExternalWrench& x : w.world->wrenches().wrenches()) {
+    Require(x.body != b, "~clear_body_wrenches: a scheduled wrench on the body is left");
+  }
 }
 
 // The core alone: SetExternalWrench with any index and value (std::out_of_range,
 // std::invalid_argument for non-finite; a finite one is accepted, whatever its size).
-void RawWrench(World& w, FuzzedDataProvider& in) {
+void RawWrench(Session& w, FuzzedDataProvider& in) {
   const int body = in.ConsumeIntegralInRange<int>(-2, static_cast<int>(kMaxBodies) + 1);
   const Eigen::Vector3d force = HostileVector(in);
   const Eigen::Vector3d torque = HostileVector(in);
-  const Snapshot before(*w.sim);
+  const Snapshot before(*w.world);
   try {
-    w.sim->SetExternalWrench(body, force, torque);
+    w.sim().SetExternalWrench(body, force, torque);
   } catch (const std::out_of_range& e) {
-    Require(body < 0 || static_cast<std::size_t>(body) >= w.sim->scene().bodies.size(),
+    Require(body < 0 || static_cast<std::size_t>(body) >= w.sim().scene().bodies.size(),
             "SetExternalWrench: out_of_range for a valid body");
-    before.RequireUnchanged(*w.sim, "SetExternalWrench");
+    before.RequireUnchanged(*w.world, "SetExternalWrench");
     return;
   } catch (const std::invalid_argument& e) {
     Require(!force.allFinite() || !torque.allFinite(),
             std::string("SetExternalWrench rejected a finite wrench: ") + e.what());
-    before.RequireUnchanged(*w.sim, "SetExternalWrench");
+    before.RequireUnchanged(*w.world, "SetExternalWrench");
     return;
   } catch (const std::exception& e) {
     Finding(std::string("SetExternalWrench threw an undocumented type: ") + e.what());
@@ -472,8 +487,8 @@ void RawWrench(World& w, FuzzedDataProvider& in) {
 // The core alone: SetState with one entry of one body replaced by any value (std::invalid_argument
 // for a non-finite value, a zero quaternion, a wrong size, or a state whose energy overflows: a
 // term of MechanicalEnergy, their sum, |v|² or |ω|²; any other is accepted).
-void RawSetState(World& w, FuzzedDataProvider& in) {
-  std::vector<BodyState> state = w.sim->state();
+void RawSetState(Session& w, FuzzedDataProvider& in) {
+  std::vector<BodyState> state = w.sim().state();
   if (!state.empty()) {
     BodyState& s = state[in.ConsumeIntegralInRange<std::size_t>(0, state.size() - 1)];
     switch (in.ConsumeIntegralInRange<int>(0, 3)) {
@@ -496,15 +511,15 @@ void RawSetState(World& w, FuzzedDataProvider& in) {
                  s.linear_velocity.z(), s.angular_velocity.x(), s.angular_velocity.y(),
                  s.angular_velocity.z());
   }
-  const Snapshot before(*w.sim);
+  const Snapshot before(*w.world);
   try {
-    w.sim->SetState(state);
+    w.sim().SetState(state);
   } catch (const std::invalid_argument& e) {
     fuzz::RequireMessage(e, "SetState");
-    before.RequireUnchanged(*w.sim, "SetState");
-    bool refusable = state.size() != w.sim->scene().bodies.size() || !fuzz::Finite(state);
+    before.RequireUnchanged(*w.world, "SetState");
+    bool refusable = state.size() != w.sim().scene().bodies.size() || !fuzz::Finite(state);
     if (!refusable) {
-      refusable = !std::isfinite(MechanicalEnergy(w.sim->scene(), state));
+      refusable = !std::isfinite(MechanicalEnergy(w.sim().scene(), state));
       for (const BodyState& s : state) {
         refusable = refusable || !(s.orientation.coeffs().squaredNorm() > 0.0) ||
                     !std::isfinite(s.linear_velocity.squaredNorm()) ||
@@ -517,120 +532,108 @@ void RawSetState(World& w, FuzzedDataProvider& in) {
   } catch (const std::exception& e) {
     Finding(std::string("SetState threw an undocumented type: ") + e.what());
   }
-  Require(fuzz::Finite(w.sim->state()) && !w.sim->diverged(),
+  Require(fuzz::Finite(w.sim().state()) && !w.sim().diverged(),
           "SetState accepted a non-finite state");
-  Require(std::isfinite(w.sim->Energy()), "SetState accepted a state whose energy overflows");
+  Require(std::isfinite(w.sim().Energy()), "SetState accepted a state whose energy overflows");
   w.beyond_node_bounds = true;
 }
 
-void RawSetTime(World& w, FuzzedDataProvider& in) {
+void RawSetTime(Session& w, FuzzedDataProvider& in) {
   const double time = HostileDouble(in);
-  const Snapshot before(*w.sim);
+  const Snapshot before(*w.world);
   try {
-    w.sim->SetTime(time);
+    w.sim().SetTime(time);
   } catch (const std::invalid_argument&) {
     Require(!std::isfinite(time), "SetTime rejected a finite time");
-    before.RequireUnchanged(*w.sim, "SetTime");
+    before.RequireUnchanged(*w.world, "SetTime");
     return;
   }
-  Require(fuzz::SameBits(w.sim->time(), time), "SetTime: the time is not the one set");
+  Require(fuzz::SameBits(w.sim().time(), time), "SetTime: the time is not the one set");
 }
 
-// AddBodies: one shipped scene's bodies and their colliders as a model (names suffixed, or not:
-// then they clash), moved by an offset within the start bounds (the node's bound for every pose).
-void AddBodies(World& w, FuzzedDataProvider& in) {
-  const ShippedScene& source = Scenes()[in.ConsumeIntegralInRange<std::size_t>(0, Scenes().size() - 1)];
-  if (w.sim->scene().bodies.size() + source.configured.bodies.size() > kMaxBodies) return;
-  Scene model;
-  const bool rename = in.ConsumeIntegralInRange<int>(0, 3) != 0;
-  const std::string suffix = "_" + std::to_string(++w.added);
-  model.bodies = source.configured.bodies;
-  for (RigidBody& b : model.bodies) {
-    if (rename) b.name += suffix;
+// OnSpawnUrdfModel: World::Spawn of one shipped scene as a model, under a name of the input (fresh,
+// taken, or anything), at a hostile pose relative to the world or a body.
+void Spawn(Session& w, FuzzedDataProvider& in) {
+  const ShippedScene& source =
+      Scenes()[in.ConsumeIntegralInRange<std::size_t>(0, Scenes().size() - 1)];
+  if (w.sim().scene().bodies.size() + source.model.bodies.size() > kMaxBodies) return;
+  std::vector<std::string> names{"m" + std::to_string(++w.spawned), "1m", "a/b", ""};
+  for (const world::Model& m : w.world->models().models()) names.push_back(m.name);
+  const std::string name = PickName(in, names);
+  std::vector<std::string> frames{"", "world"};
+  for (const RigidBody& b : w.sim().scene().bodies) frames.push_back(b.name);
+  const std::string reference = in.ConsumeBool() ? PickName(in, frames) : "";
+  world::Pose pose;
+  pose.position = in.ConsumeBool() ? HostileVector(in) : Eigen::Vector3d(0.5, 0.0, 0.1);
+  if (in.ConsumeBool()) {
+    const double x = HostileDouble(in), y = HostileDouble(in), z = HostileDouble(in);
+    pose.orientation = Eigen::Quaterniond(HostileDouble(in), x, y, z);
   }
-  for (const Collider& c : source.configured.colliders) {
-    if (c.body == kWorld) continue;  // the model's ground is the world's
-    model.colliders.push_back(c);
-    if (rename) model.colliders.back().name += suffix;
-  }
-  Eigen::Vector3d offset = HostileVector(in);
-  std::vector<BodyState> state = source.configured.initial_state;
-  const Snapshot before(*w.sim);
+  const Snapshot before(*w.world);
   try {
-    scene_io::CheckInitialPosition("offset", offset);
-    for (BodyState& s : state) {
-      s.position += offset;
-      scene_io::CheckInitialPosition("position", s.position);
-    }
-  } catch (const std::invalid_argument&) {
-    return;  // rejected before the core
-  }
-  int first = -1;
-  try {
-    first = w.sim->AddBodies(model, state);
+    w.world->Spawn(name, source.model, reference, pose, "/" + name + "/robot_description");
   } catch (const std::invalid_argument& e) {
-    fuzz::RequireMessage(e, "AddBodies");
-    Require(!rename, std::string("AddBodies rejected a model with fresh names: ") + e.what());
-    before.RequireUnchanged(*w.sim, "AddBodies");
+    fuzz::RequireMessage(e, "~spawn_urdf_model");
+    before.RequireUnchanged(*w.world, "~spawn_urdf_model");
     return;
   } catch (const std::exception& e) {
-    Finding(std::string("AddBodies threw an undocumented type: ") + e.what());
+    Finding(std::string("~spawn_urdf_model threw an undocumented type: ") + e.what());
   }
-  Require(first == static_cast<int>(before.state.size()) &&
-              w.sim->scene().bodies.size() == before.state.size() + model.bodies.size(),
-          "AddBodies: the bodies are not appended");
+  Require(w.world->models().Find(name) >= 0, "~spawn_urdf_model: accepted, but no such model");
+  Require(w.sim().scene().bodies.size() == before.state.size() + source.model.bodies.size() &&
+              w.world->configured_scene().bodies.size() ==
+                  before.configured.size() + source.model.bodies.size(),
+          "~spawn_urdf_model: the bodies are not appended to the world and its configured start");
   for (std::size_t b = 0; b < before.state.size(); ++b) {
-    Require(fuzz::SameBits(w.sim->state()[b], before.state[b]),
-            "AddBodies changed the state of a body already there");
+    Require(fuzz::SameBits(w.sim().state()[b], before.state[b]),
+            "~spawn_urdf_model changed the state of a body already there");
   }
 }
 
-// RemoveBodies: indices from the input (some out of range, repeated, or colliders on bodies).
-void RemoveBodies(World& w, FuzzedDataProvider& in) {
-  const int bodies = static_cast<int>(w.sim->scene().bodies.size());
-  const int colliders = static_cast<int>(w.sim->scene().colliders.size());
-  std::vector<int> remove_bodies;
-  std::vector<int> remove_colliders;
-  for (int k = in.ConsumeIntegralInRange<int>(0, 2); k > 0; --k) {
-    remove_bodies.push_back(in.ConsumeIntegralInRange<int>(-1, bodies));
-  }
-  for (int k = in.ConsumeIntegralInRange<int>(0, 1); k > 0; --k) {
-    remove_colliders.push_back(in.ConsumeIntegralInRange<int>(-1, colliders));
-  }
-  const Snapshot before(*w.sim);
+// OnDeleteModel: World::Delete of a model of the world or any name.
+void Delete(Session& w, FuzzedDataProvider& in) {
+  std::vector<std::string> names;
+  for (const world::Model& m : w.world->models().models()) names.push_back(m.name);
+  const std::string name = PickName(in, names);
+  const Snapshot before(*w.world);
+  const int m = w.world->models().Find(name);
+  std::vector<int> removed_bodies;
+  if (m >= 0) removed_bodies = w.world->models().at(m).bodies;
   try {
-    w.sim->RemoveBodies(remove_bodies, remove_colliders);
-  } catch (const std::out_of_range& e) {
-    fuzz::RequireMessage(e, "RemoveBodies");
-    before.RequireUnchanged(*w.sim, "RemoveBodies");
-    return;
+    w.world->Delete(name);
   } catch (const std::invalid_argument& e) {
-    fuzz::RequireMessage(e, "RemoveBodies");
-    before.RequireUnchanged(*w.sim, "RemoveBodies");
+    fuzz::RequireMessage(e, "~delete_model");
+    Require(m < 0, std::string("~delete_model refused a model of the world: ") + e.what());
+    before.RequireUnchanged(*w.world, "~delete_model");
     return;
   } catch (const std::exception& e) {
-    Finding(std::string("RemoveBodies threw an undocumented type: ") + e.what());
+    Finding(std::string("~delete_model threw an undocumented type: ") + e.what());
   }
+  Require(w.world->models().Find(name) < 0, "~delete_model: accepted, but the model is there");
   // the rest keep their state bit for bit, in order
   std::vector<BodyState> kept;
-  for (int b = 0; b < bodies; ++b) {
-    if (std::find(remove_bodies.begin(), remove_bodies.end(), b) == remove_bodies.end()) {
+  for (int b = 0; b < static_cast<int>(before.state.size()); ++b) {
+    if (std::find(removed_bodies.begin(), removed_bodies.end(), b) == removed_bodies.end()) {
       kept.push_back(before.state[static_cast<std::size_t>(b)]);
     }
   }
-  Require(fuzz::SameBits(w.sim->state(), kept), "RemoveBodies: the remaining bodies changed");
+  Require(fuzz::SameBits(w.sim().state(), kept), "~delete_model: the remaining bodies changed");
+  Require(w.world->configured_scene().bodies.size() == kept.size(),
+          "~delete_model: the configured start still holds the model");
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();
+  scene_io::UrdfSceneOptions options;
+  RegisterFclPairs(&options.collision_table);  // as the node and simulate load
   for (const char* name : {"tippe_top", "tippe_top_duel", "die", "coin"}) {
+    const std::string path = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/" + name + ".urdf";
     ShippedScene s;
-    s.urdf = scene_io::LoadUrdfFile(std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/" + name +
-                                    ".urdf");
-    s.configured = s.urdf.scene;
-    s.configured.initial_state = node::InitialState(s.urdf, 0, node::InitialConditions{});
+    s.urdf = scene_io::LoadUrdfFile(path, options);
+    scene_io::UrdfSceneOptions no_ground = options;
+    no_ground.ground = false;  // as a spawned model: the world has its ground
+    s.model = scene_io::LoadUrdfFile(path, no_ground).scene;
     Scenes().push_back(std::move(s));
   }
   return 0;
@@ -638,21 +641,22 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzedDataProvider in(data, size);
-  World w;
-  w.shipped = &Scenes()[in.ConsumeIntegralInRange<std::size_t>(0, Scenes().size() - 1)];
-  w.sim = std::make_unique<Simulator>(w.shipped->configured, w.configured_options);
+  Session w;
+  const ShippedScene& start =
+      Scenes()[in.ConsumeIntegralInRange<std::size_t>(0, Scenes().size() - 1)];
+  w.world = std::make_unique<world::World>(start.urdf, world::WorldConfig{});
   // FUZZ_TRACE=1 in the environment: print the requests of an input (to read a finding)
   static const bool trace = std::getenv("FUZZ_TRACE") != nullptr;
   for (int request = 0; request < kMaxRequests && in.remaining_bytes() > 0; ++request) {
     const int kind = in.ConsumeIntegralInRange<int>(0, 15);
     if (trace) {
       std::fprintf(stderr, "request %d: kind %d, t = %.17g, options dt %.17g tol %.17g/%.17g "
-                   "it %d alpha %.17g solver %d gyro %d\n", request, kind, w.sim->time(),
-                   w.sim->options().time_step, w.sim->options().solver.tolerance_rel,
-                   w.sim->options().solver.tolerance_abs, w.sim->options().solver.max_iterations,
-                   w.sim->options().solver.relaxation,
-                   static_cast<int>(w.sim->options().solver.type),
-                   static_cast<int>(w.sim->options().gyroscopic));
+                   "it %d alpha %.17g solver %d gyro %d\n", request, kind, w.sim().time(),
+                   w.sim().options().time_step, w.sim().options().solver.tolerance_rel,
+                   w.sim().options().solver.tolerance_abs, w.sim().options().solver.max_iterations,
+                   w.sim().options().solver.relaxation,
+                   static_cast<int>(w.sim().options().solver.type),
+                   static_cast<int>(w.sim().options().gyroscopic));
     }
     switch (kind) {
       case 0: case 1: case 2: Step(w, in); break;
@@ -667,10 +671,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 11: RawWrench(w, in); break;
       case 12: RawSetState(w, in); break;
       case 13: RawSetTime(w, in); break;
-      case 14: AddBodies(w, in); break;
-      default: RemoveBodies(w, in); break;
+      case 14: Spawn(w, in); break;
+      default: Delete(w, in); break;
     }
-    fuzz::RequireFiniteOrFault(*w.sim, "after a request", /*energy=*/true);
+    fuzz::RequireFiniteOrFault(w.sim(), "after a request", /*energy=*/true);
   }
   return 0;
 }

@@ -3,7 +3,7 @@
 //
 // Accepted outcomes: a std::exception with a one-line message (the loader's clear error), or a
 // scene that then goes the node's way without a fault of its own: the configured start of body 0
-// (node::InitialState, as ~initial/... with nothing set), a Simulator constructed from it
+// (world::InitialState, as ~initial/... with nothing set), a Simulator constructed from it
 // (nothing thrown: "what loads is a simulable rigid body"), the start-up overlap check, the start
 // written as initial-state YAML and read back to the same state, and kSteps steps under the
 // stepping contract of fuzz_support.h. Anything else (a crash, a sanitizer report, a leak, an
@@ -19,7 +19,7 @@
 #include "fuzz_support.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/overlaps.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
+#include "nonsmooth_sim/world/initial_conditions.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
@@ -58,18 +58,23 @@ void CheckYamlRoundTrip(const Scene& scene) {
   }
 }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  RegisterFclPairs();  // as the node and simulate do at start-up
-  return 0;
+// The default options with the FCL pairs in the collision table, as the node and simulate load.
+const scene_io::UrdfSceneOptions& LoaderOptions() {
+  static const scene_io::UrdfSceneOptions options = [] {
+    scene_io::UrdfSceneOptions o;
+    RegisterFclPairs(&o.collision_table);
+    return o;
+  }();
+  return options;
 }
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   scene_io::UrdfScene urdf;
   try {
-    urdf = scene_io::SceneFromUrdf(text);
+    urdf = scene_io::SceneFromUrdf(text, LoaderOptions());
   } catch (const std::exception& e) {
     fuzz::RequireClearError(e, "SceneFromUrdf");
     return 0;
@@ -88,9 +93,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // the node's configured start: body 0 with no ~initial/... set
   Scene scene = loaded;
   try {
-    scene.initial_state = node::InitialState(urdf, 0, node::InitialConditions{});
+    scene.initial_state = world::InitialState(urdf, 0, world::InitialConditions{});
   } catch (const std::exception& e) {
-    Finding(std::string("node::InitialState of a loaded scene threw: ") + e.what());
+    Finding(std::string("world::InitialState of a loaded scene threw: ") + e.what());
   }
   Require(fuzz::Finite(scene.initial_state), "the configured start is not finite");
 

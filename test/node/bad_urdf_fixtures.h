@@ -29,7 +29,7 @@ inline const std::vector<BadUrdf>& BadUrdfFixtures() {
       {"nan_origin.urdf", {"collision \"peg_sphere\" > origin", "\"nan\" is not a finite number"}},
       {"nan_inertia.urdf", {"inertial > inertia", "iyy", "\"NaN\" is not a finite number"}},
       {"nan_friction.urdf", {"gazebo reference=\"tippe_top\"", "mu", "not a finite number"}},
-      // finite but not a simulable rigid body (issue 11): the first two crashed the node at its
+      // finite but not a simulable rigid body: the first two crashed the node at its
       // first step, the last two were accepted silently
       {"tiny_mass.urdf", {"link \"tippe_top\" > inertial > mass", "value=\"4.9e-324\"",
                           "expected [1e-06, 1e+06] kg"}},

@@ -83,9 +83,9 @@ TEST(Conversions, NamesThatShareAFrameAfterSanitisingAreFound) {
   Scene scene = MakeTippeTopScene({}, {0.0, 0.0});  // "big_sphere", "peg_sphere", "ground"
   EXPECT_EQ(FrameNameClash(scene, "world"), "");
   Scene clash = scene;
-  clash.colliders[1].name = "big/sphere";  // → big_sphere_contact, as the big sphere's
+  clash.colliders[1].name = "big-sphere";  // → big_sphere_contact, as the big sphere's
   EXPECT_EQ(FrameNameClash(clash, "world").rfind(
-                "collision \"big/sphere\" would have the contact frame \"big_sphere_contact\" "
+                "collision \"big-sphere\" would have the contact frame \"big_sphere_contact\" "
                 "and topic ~wrench/big_sphere of collision \"big_sphere\"",
                 0),
             0u)

@@ -3,6 +3,7 @@
 // good URDF with the same command line starts (the cases fail for their defect, not the setup).
 // Files that are devices, FIFOs or beyond ~max_urdf_bytes, and names that share a frame after
 // sanitising, are such defects too.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -14,6 +15,7 @@
 
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -137,7 +139,7 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      {"~tf_rate", "expected a number"}, "tf_rate");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_5", "_urdf_file:=" + Fixture("absent.urdf")}),
                      {"~urdf_file", "absent.urdf", "no such file"}, "urdf_file");
-  // finite but beyond the bounds of the core's validation (issue 11): the node ran 2^31
+  // finite but beyond the bounds of the core's validation: the node ran 2^31
   // iterations per step, or started with an infinite kinetic energy
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_7", urdf, "_max_iterations:=2147483647"}),
                      {"max_iterations", "<= 100000 in a simulation", "2147483647"},
@@ -152,6 +154,30 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");
+}
+
+// ~initial_state (rosparam load FILE ~initial_state) arrives from the master whole, with no byte
+// bound of its own: more entries than a world holds bodies, or a link name beyond the name bound,
+// stop the start-up before the entries are read.
+TEST(NodeBadUrdf, AnInitialStateBeyondTheBoundsStopsTheNode) {
+  const std::string urdf = "_urdf_file:=" + std::string(NONSMOOTH_SIM_SOURCE_DIR) +
+                           "/urdf/tippe_top.urdf";
+  XmlRpc::XmlRpcValue state;
+  state["position"][0] = 0.0;
+  state["position"][1] = 0.0;
+  state["position"][2] = 0.1;
+  XmlRpc::XmlRpcValue many;
+  for (int k = 0; k <= 4096; ++k) many["bodies"]["b" + std::to_string(k)] = state;
+  ros::param::set("/too_many_bodies/initial_state", many);
+  ExpectOneErrorLine(RunNode({"__name:=too_many_bodies", urdf}),
+                     {"~initial_state/bodies", "4097 entries, more than the bound of 4096"},
+                     "4097 bodies");
+  XmlRpc::XmlRpcValue long_name;
+  long_name["bodies"][std::string(300, 'x')] = state;
+  ros::param::set("/long_link_name/initial_state", long_name);
+  ExpectOneErrorLine(RunNode({"__name:=long_link_name", urdf}),
+                     {"~initial_state/bodies", "300 bytes, more than the bound of 256"},
+                     "a 300-byte link name");
 }
 
 // Files that are not regular files or exceed ~max_urdf_bytes are refused by type and size before
@@ -177,7 +203,7 @@ TEST(NodeBadUrdf, DevicesFifosAndOversizeFilesAreRefusedBeforeReading) {
 }
 
 // Names that would share a TF frame or a ~wrench/ topic after sanitising stop the start-up, naming
-// both (collisions "x/y" and "x_y" published one frame with two transforms per stamp).
+// both (collisions "x-y" and "x_y" would publish one frame with two transforms per stamp).
 TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
   const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_clash.urdf";
   const std::string inertial =
@@ -188,11 +214,11 @@ TEST(NodeBadUrdf, NamesThatShareAFrameAfterSanitisingStopTheNode) {
            std::to_string(z) + "\"/><geometry><sphere radius=\"0.05\"/></geometry></collision>";
   };
   std::ofstream(path) << "<robot name=\"r\"><link name=\"b\">" << inertial << ball("x_y", 0.0)
-                      << ball("x/y", 0.01) << "</link></robot>";
+                      << ball("x-y", 0.01) << "</link></robot>";
   ExpectOneErrorLine(RunNode({"__name:=name_clash", "_urdf_file:=" + path}),
-                     {"collision \"x/y\" would have the contact frame \"x_y_contact\" and "
+                     {"collision \"x-y\" would have the contact frame \"x_y_contact\" and "
                       "topic ~wrench/x_y of collision \"x_y\""},
-                     "x/y and x_y");
+                     "x-y and x_y");
 }
 
 TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {
@@ -212,6 +238,48 @@ TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {
   const std::string all = run.out + run.err;
   EXPECT_NE(all.find("collisions \"shell\" and \"ground\" overlap by 0.05 m"), std::string::npos)
       << all;
+}
+
+// A body whose only collision is skipped (a mesh) starts and falls for ever: the node warns once
+// that it never touches anything, and /diagnostics says so (WARN) while it runs.
+TEST(NodeBadUrdf, ABodyThatCanTouchNothingIsAWarningInTheLogAndInDiagnostics) {
+  const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_mesh_top.urdf";
+  std::ofstream(path) << "<robot name=\"r\"><link name=\"top\"><inertial><mass value=\"0.1\"/>"
+                         "<inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" "
+                         "izz=\"1e-4\"/></inertial><collision name=\"hull\"><geometry>"
+                         "<mesh filename=\"package://x/top.stl\"/></geometry></collision></link>"
+                         "</robot>";
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  std::string summary;  // the WARN's message, once one came (under mutex)
+  ros::Subscriber diagnostics = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& status : m->status) {
+          if (status.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+              status.message.find("can no longer touch anything") != std::string::npos) {
+            const std::lock_guard<std::mutex> lock(mutex);
+            summary = status.message;
+          }
+        }
+      });
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const NodeRun run =
+      RunNode({"__name:=mesh_top", "_urdf_file:=" + path, "_paused:=true"}, [&] {
+        const std::lock_guard<std::mutex> lock(mutex);
+        return !summary.empty();
+      });
+  spinner.stop();
+  diagnostics.shutdown();
+  EXPECT_FALSE(run.exited) << "exit code " << run.exit_code << ", stderr:\n" << run.err;
+  EXPECT_EQ(summary,
+            "1 bodies can no longer touch anything: body top has no collision: it never touches "
+            "anything");
+  const std::string all = run.out + run.err;
+  const std::string warning = "body top has no collision: it never touches anything";
+  const std::size_t first = all.find(warning);
+  EXPECT_NE(first, std::string::npos) << all;
+  EXPECT_EQ(all.find(warning, first + 1), std::string::npos) << "warned twice:\n" << all;
 }
 
 TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {

@@ -1,8 +1,8 @@
 // ~spawn_urdf_model at its bounds (node_bounds_test.test: the Tippe-Top duel, paused):
 // - sizes: model_xml over ~max_urdf_bytes (16 MiB) refused before parsing; names over 256 bytes;
 //   more than 4 096 collisions in one URDF; a world of more than 16 384 collisions;
-// - names that would share a TF frame or a ~wrench/ topic after sanitising (the shipped top
-//   spawned as "top1" into the duel; collisions "x/y" and "x_y") refused, naming both;
+// - names that would share a TF frame or a ~wrench/ topic after sanitising (collisions "x-y" and
+//   "x_y" of one model) refused, naming both;
 // - robot_namespace confined to the model's own namespace: "/", global parameters (/rosdistro,
 //   /use_sim_time, /run_id, the start-up /robot_description) and another model's namespace are
 //   refused and keep their values; two models never share a description parameter.
@@ -26,13 +26,6 @@ namespace {
 
 const std::string kTippeTopUrdf = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf";
 constexpr std::size_t kMaxUrdfBytes = std::size_t{16} << 20;  // ~max_urdf_bytes' default
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 const std::string kInertial =
     "<inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" "
@@ -144,14 +137,11 @@ TEST_F(Bounds, SizesOfTheUrdfAndItsNamesAreBounded) {
 
 TEST_F(Bounds, NamesThatWouldShareAFrameOrTopicAreRefused) {
   Remember();
-  // the shipped top as "top1": its "top1/big_sphere" would publish the duel's contact frame
-  ExpectRefused(Spawn("top1", ReadFile(kTippeTopUrdf), 1.0),
-                {"model top1: collision \"top1/big_sphere\" would have the contact frame "
-                 "\"top1_big_sphere_contact\" and topic ~wrench/top1_big_sphere of collision "
-                 "\"top1_big_sphere\""});
-  ExpectRefused(Spawn("xy", Body(Ball("x_y") + Ball("x/y", 0.02)), 1.0),
-                {"collision \"xy/x/y\" would have the contact frame \"xy_x_y_contact\"",
-                 "of collision \"xy/x_y\""});
+  // a spawned model's names keep their "<model>/" (frames "xy/..._contact", topics
+  // ~wrench/xy/...): only names of one model that differ in a sanitised character can clash
+  ExpectRefused(Spawn("xy", Body(Ball("x_y") + Ball("x-y", 0.02)), 1.0),
+                {"model xy: collision \"xy/x-y\" would have the contact frame "
+                 "\"xy/x_y_contact\" and topic ~wrench/xy/x_y of collision \"xy/x_y\""});
 }
 
 TEST_F(Bounds, RobotNamespaceStaysInTheModelsOwnNamespace) {

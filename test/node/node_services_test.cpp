@@ -357,7 +357,7 @@ std::optional<StepSimulation::Response> StepWithin(std::uint32_t steps, double t
 }
 
 TEST_F(NodeServices, HostileRequestsAreRejectedAndChangeNothing) {
-  // issue 11: finite values that multiplied the work without bound or made the state
+  // finite values that multiplied the work without bound or made the state
   // non-finite were accepted; one ~step then iterated 2^31 times holding the node's lock
   Step(200);
   const SimulationState state = State();

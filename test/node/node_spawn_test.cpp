@@ -9,8 +9,10 @@
 //   separately: a world with the other top steps this one exactly as a world without it);
 // - bad spawns (a malformed URDF, an existing name, NaN in the pose, an unknown reference frame,
 //   a name that is not a graph name) and deleting an unknown model are refused with the reason
-//   and change nothing (~get_state bit-identical).
+//   and change nothing (~get_state bit-identical);
+// - a deleted model's ~wrench/ topic stays advertised, silent, and serves its next spawn.
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <gtest/gtest.h>
 #include <tf2_msgs/TFMessage.h>
 
@@ -38,13 +40,6 @@ namespace {
 constexpr double kInverted = 2.9;  // θ > 2.9 rad: spinning on the peg
 constexpr double kOffset = 0.5;    // the second top's distance from the first [m]
 const std::string kTippeTopUrdf = std::string(NONSMOOTH_SIM_SOURCE_DIR) + "/urdf/tippe_top.urdf";
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 class Spawn : public testing::Test {
  protected:
@@ -234,6 +229,56 @@ TEST_F(Spawn, BadRequestsAreRefusedAndChangeNothing) {
   EXPECT_EQ(Models(), models);
   ExpectSameBodies(before, State());
   EXPECT_EQ(before.sim_time, State().sim_time);
+}
+
+// A deleted model's ~wrench/ topic sends a last zero wrench, stays advertised without messages
+// (unadvertising would call the master under roscpp's publication lock, which the stepping takes:
+// node_master_test) and serves the next model that has that collision name.
+TEST_F(Spawn, ADeletedModelsWrenchTopicIsKeptForItsNextSpawn) {
+  const std::string xml = ReadFile(kTippeTopUrdf);
+  const std::string topic = kNode + "wrench/w1/big_sphere";
+  Recorder<geometry_msgs::WrenchStamped> wrench(nh_, topic);
+  const auto is_load = [](const geometry_msgs::WrenchStamped& m) {
+    return m.header.frame_id == "w1/big_sphere_contact" && m.wrench.force.z > 0.0;
+  };
+  const auto is_zero = [](const geometry_msgs::WrenchStamped& m) {
+    return m.wrench.force.x == 0.0 && m.wrench.force.y == 0.0 && m.wrench.force.z == 0.0 &&
+           m.wrench.torque.x == 0.0 && m.wrench.torque.y == 0.0 && m.wrench.torque.z == 0.0;
+  };
+  // step (paused) until the top on the ground sends its load: the subscriber is connected
+  const auto loaded = [&] {
+    return WaitFor(
+        [&] {
+          Step(100);
+          return wrench.WaitForMessage(is_load, 0.1);
+        },
+        30.0);
+  };
+  for (int round = 0; round < 2; ++round) {
+    const SpawnModel::Response spawned = SpawnTop("w1", xml, -kOffset);
+    ASSERT_TRUE(spawned.success) << spawned.status_message;
+    ASSERT_TRUE(loaded()) << "round " << round << ": no load on " << topic;
+    DeleteModel remove;
+    remove.request.model_name = "w1";
+    const auto deleted = Call<DeleteModel>(nh_, kNode + "delete_model", remove).response;
+    ASSERT_TRUE(deleted.success) << deleted.status_message;
+    ASSERT_TRUE(wrench.WaitForMessage(is_zero, 10.0)) << "no last zero wrench";
+    std::vector<std::string> publishers;
+    XmlRpc::XmlRpcValue request, response, state;
+    request[0] = ros::this_node::getName();
+    ASSERT_TRUE(ros::master::execute("getSystemState", request, response, state, true));
+    for (int i = 0; i < state[0].size(); ++i) {
+      if (static_cast<std::string>(state[0][i][0]) != topic) continue;
+      for (int k = 0; k < state[0][i][1].size(); ++k) {
+        publishers.push_back(static_cast<std::string>(state[0][i][1][k]));
+      }
+    }
+    EXPECT_EQ(publishers, std::vector<std::string>{"/nonsmooth_sim"}) << "kept advertised";
+    wrench.Clear();
+    Step(500);
+    ros::WallDuration(0.2).sleep();
+    EXPECT_EQ(wrench.Count(), 0u) << "a deleted model's topic is silent";
+  }
 }
 
 }  // namespace

@@ -69,8 +69,8 @@ TEST_F(World, PropertiesNameTheModelItsBodiesAndCollisions) {
   srv.request.model_name = "blocks";
   const auto model = Call<GetModelProperties>(nh_, kNode + "get_model_properties", srv).response;
   EXPECT_TRUE(model.success) << model.status_message;
-  EXPECT_EQ(model.body_names, (std::vector<std::string>{"blocks::slider", "blocks::sticker"}));
-  EXPECT_EQ(model.canonical_body_name, "blocks::slider");
+  EXPECT_EQ(model.body_names, (std::vector<std::string>{"slider", "sticker"}));
+  EXPECT_EQ(model.canonical_body_name, "slider");
   EXPECT_EQ(model.geom_names, (std::vector<std::string>{"slider_box", "sticker_box"}));
   EXPECT_FALSE(model.is_static);
   srv.request.model_name = "nope";

@@ -9,8 +9,10 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <fstream>
 #include <functional>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,14 @@ namespace nonsmooth_sim::node::test {
 
 /// The node's private namespace in the launch file.
 inline const std::string kNode = "/nonsmooth_sim/";
+
+/// The contents of a text file ("" if it cannot be read: the callers assert on what they need).
+inline std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 /// The number a /diagnostics status holds under `key`; false if it has none.
 inline bool DiagnosticValue(const diagnostic_msgs::DiagnosticStatus& status,

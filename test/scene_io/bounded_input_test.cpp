@@ -131,12 +131,30 @@ TEST(BoundedYaml, OneDocumentOnly) {
   EXPECT_NO_THROW(InitialStateFromYaml(scene, body));
   EXPECT_NO_THROW(InitialStateFromYaml(scene, "---\n" + body + "...\n# a comment\n"));
   ExpectContains(Refusal([&] { InitialStateFromYaml(scene, body + "---\nbodies: {}\n"); }),
-                 {"holds 2 YAML documents", "allowed: one"});
+                 {"initial state (line 4, column 1): a second YAML document", "allowed: one"});
   ExpectContains(Refusal([&] { InitialStateFromYaml(scene, body + "...\ntrailing text\n"); }),
-                 {"holds 2 YAML documents", "text after ..."});
+                 {"(line 5, column 1): a second YAML document", "after --- or ..."});
   const std::string path = WriteFile("bounded_input_test_two.yaml", body + "---\n" + body);
   ExpectContains(Refusal([&] { InitialStateFromYamlFile(scene, path); }),
-                 {"initial state: " + path + ": ", "holds 2 YAML documents"});
+                 {"initial state: " + path + " (line 4, column 1): a second YAML document"});
+}
+
+// Found by scene_yaml_fuzz (test/fuzz, 2026-12-06): a "," outside brackets is a token that no
+// document consumes, and yaml-cpp's LoadAll never returned on it (it appended empty documents
+// until the memory was gone). The documents are counted up to the second, which begins there.
+TEST(BoundedYaml, ATokenOutsideTheDocumentIsRefusedWhereItIs) {
+  ExpectContains(Refusal([&] { ParseInitialStateYaml(","); }),
+                 {"initial state (line 1, column 1): a second YAML document", "\",\""});
+  ExpectContains(Refusal([&] { ParseInitialStateYaml("{bodies: {}},\n"); }),
+                 {"(line 1, column 13): a second YAML document"});
+  ExpectContains(Refusal([&] { ParseInitialStateYaml("[1, 2]\n, x\n"); }),
+                 {"(line 2, column 1): a second YAML document"});
+  // in a block map it is the map that is not closed
+  ExpectContains(Refusal([&] { ParseInitialStateYaml("bodies:\n  b: {}\n, x\n"); }),
+                 {"(line 3, column 1): not valid YAML"});
+  // a "," inside a plain scalar or inside brackets is YAML, and reaches the format's own checks
+  ExpectContains(Refusal([&] { ParseInitialStateYaml("bodies: 1,2\n"); }), {"bodies", "not a map"});
+  EXPECT_NO_THROW(ParseInitialStateYaml("bodies: {b: {position: [0, 0, 1]}, d: {}}\n"));
 }
 
 TEST(BoundedYaml, DeepNestingIsRefusedBeforeParsing) {

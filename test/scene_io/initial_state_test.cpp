@@ -260,7 +260,7 @@ TEST(InitialStateYaml, AQuaternionTooLargeToNormaliseIsAnError) {
 }
 
 TEST(InitialStateYaml, ValuesBeyondTheBoundsAreErrorsNamingTheKeyAndTheBound) {
-  // finite is not enough: a spin of 1e300 rad/s has an infinite kinetic energy (issue 11)
+  // finite is not enough: a spin of 1e300 rad/s has an infinite kinetic energy
   const Scene scene = TwoBodies();
   ExpectContains(LoadError(scene, "bodies:\n  d:\n    angular_velocity: [0, 0, 1e300]\n"),
                  {"bodies.d.angular_velocity (line 3)", "|w| = 1e+300 rad/s", "<= 10000 rad/s"});

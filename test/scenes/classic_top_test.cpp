@@ -26,13 +26,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
 using scene_test::AxisE3;
-using scene_test::kPi;
 using scene_test::LoadShippedScene;
 using scene_test::Runner;
 

@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::kPi;
 using scene_test::LoadShippedScene;
 using scene_test::Runner;
 

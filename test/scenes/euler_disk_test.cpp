@@ -22,13 +22,13 @@
 #include <vector>
 
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
 using scene_test::AxisE3;
-using scene_test::kPi;
 using scene_test::LoadShippedScene;
 using scene_test::Runner;
 using scene_test::WorldAngularVelocity;
@@ -149,8 +149,8 @@ TEST(EulerDisk, ShippedStartIsSteadyRollingWithTheCentreAtRest) {
   // the lowest rim point: gap 0 and v_P = v_S + ω × r_SP = 0
   const Eigen::Isometry3d pose = BodyPose(s) * scene.colliders[0].pose;
   ContactGeometry g[kMaxPairContacts];
-  const int n = Collide(Shape::Plane(), Eigen::Isometry3d::Identity(), scene.colliders[0].shape,
-                        pose, 1e-3, g);
+  const int n = scene.collision_table.Collide(Shape::Plane(), Eigen::Isometry3d::Identity(),
+                                             scene.colliders[0].shape, pose, 1e-3, g);
   ASSERT_EQ(n, 1);
   EXPECT_NEAR(g[0].gap, 0.0, 1e-15);
   const Eigen::Vector3d v_p =

@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::kPi;
 using scene_test::MaxPointSpeed;
 using scene_test::Runner;
 
@@ -52,7 +52,8 @@ double TouchingHeight(const Shape& shape, const Eigen::Quaterniond& orientation)
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = orientation.toRotationMatrix();
   ContactGeometry g[kMaxPairContacts];
-  const int n = Collide(Shape::Plane(), Eigen::Isometry3d::Identity(), shape, pose, 1.0, g);
+  const int n = CollisionTable::Defaults().Collide(Shape::Plane(), Eigen::Isometry3d::Identity(),
+                                                   shape, pose, 1.0, g);
   double lowest = 1.0;
   for (int i = 0; i < n; ++i) lowest = std::min(lowest, g[i].gap);
   return -lowest;
@@ -226,14 +227,6 @@ Incline RunIncline(double mu) {
   Incline r;
   Eigen::Vector3d at_50ms = Eigen::Vector3d::Zero();
   while (sim.time() < 0.5 && run.finite()) {
-    if (sim.time() > 0.3245 && sim.time() < 0.3256 && mu < 0.3) {
-      ContactGeometry g[kMaxPairContacts];
-      const Eigen::Isometry3d pb = BodyPose(sim.state()[0]);
-      const int n = Collide(scene.colliders[1].shape, scene.colliders[1].pose, scene.colliders[0].shape, pb, 1e-3, g);
-      std::printf("DEBUG t %.4f n %d contacts %zu:", sim.time(), n, sim.contacts().size());
-      for (int k = 0; k < n; ++k) std::printf(" [f%d %.3e]", g[k].feature, g[k].gap);
-      std::printf("  incl %.3e\n", std::acos(std::min(1.0, (sim.state()[0].orientation * Eigen::Vector3d::UnitZ()).dot(normal))));
-    }
     run.Step();
     const BodyState& b = sim.state()[0];
     const double vn = std::abs(b.linear_velocity.dot(normal));

@@ -25,14 +25,13 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/scene.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 
 namespace nonsmooth_sim::scene_test {
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 /// <source>/<relative>.
 inline std::string SourcePath(const std::string& relative) {

@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "reference/rolling_reference.h"
 #include "rolling_scene.h"
@@ -24,7 +25,6 @@
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::kPi;
 using scene_test::LoadShippedScene;
 using scene_test::RattlebackReferenceStart;
 using scene_test::RollingScene;

@@ -32,7 +32,7 @@ double SmallestGap(const Scene& scene, const std::string& only_with = "") {
                                  c.pose);
       };
       ContactGeometry g[kMaxPairContacts];
-      const int n = Collide(a.shape, pose(a), b.shape, pose(b), 1.0, g);
+      const int n = scene.collision_table.Collide(a.shape, pose(a), b.shape, pose(b), 1.0, g);
       for (int k = 0; k < n; ++k) smallest = std::min(smallest, g[k].gap);
     }
   }
@@ -68,7 +68,9 @@ TEST(ShippedStarts, TheDuelsBigSpheresStartTenMillimetresApart) {
   const Eigen::Isometry3d pa = BodyPose(scene.initial_state[0]) * scene.colliders[a].pose;
   const Eigen::Isometry3d pb = BodyPose(scene.initial_state[1]) * scene.colliders[b].pose;
   ContactGeometry g[kMaxPairContacts];
-  ASSERT_EQ(Collide(scene.colliders[a].shape, pa, scene.colliders[b].shape, pb, 1.0, g), 1);
+  ASSERT_EQ(scene.collision_table.Collide(scene.colliders[a].shape, pa, scene.colliders[b].shape,
+                                          pb, 1.0, g),
+            1);
   EXPECT_NEAR(g[0].gap, 0.010, 1e-15);
 }
 

@@ -28,12 +28,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "nonsmooth_sim/core/constants.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::kPi;
 using scene_test::LoadShippedScene;
 using scene_test::LowestPoint;
 using scene_test::Runner;

@@ -49,7 +49,7 @@
 
 #include <Eigen/Geometry>
 
-#include "nonsmooth_sim/core/collision/collision.h"
+#include "nonsmooth_sim/core/collision/collision_table.h"
 
 namespace nonsmooth_sim {
 
@@ -61,9 +61,9 @@ inline constexpr double kFclRefinementSeparation = 1e-2;
 int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out);
 
-/// Registers CollideFcl for every pair listed at the top (RegisterCollideFunction: call at
-/// start-up, before simulators step). Pairs with a closed form keep it.
-void RegisterFclPairs();
+/// Registers CollideFcl in `table` for every pair listed at the top (CollisionTable::Register).
+/// Pairs with a closed form keep it.
+void RegisterFclPairs(CollisionTable* table);
 
 }  // namespace nonsmooth_sim
 

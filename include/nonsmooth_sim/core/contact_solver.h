@@ -97,7 +97,7 @@
 // |Λ̂_k^ν - Λ̂_k*| of the old iterate from the solution (the new one's is |1 - α| times that).
 // Without it the test is fooled by (43) on a badly scaled contact: r̂_i = α/max_l Ĝ_iill makes the
 // steps of the components with a small Ĝ_iikk tiny, and |ΔΛ_k| passed the tolerance while Λ_N was
-// still far from its solution (stability_test.cpp, BadScaling). Where the prox acts, the set's
+// still far from its solution (stability_solver_test.cpp, BadScaling). Where the prox acts, the set's
 // curvature (≈ |ξ̂_F|/ρ along a curved boundary) adds to Ĝ_iikk and the error contracts much
 // faster than σ_k assumes (Tippe-Top, mapped sets: σ_τ ≈ 3000, while the sliding iterate
 // converges in 3 iterations); there the a-posteriori bound of a linearly converging iteration,

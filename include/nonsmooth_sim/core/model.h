@@ -1,7 +1,8 @@
-// The model of a simulation, as MuJoCo's mjModel: the scene, the per-pair friction-set overrides,
-// the external wrenches, and the arrays derived from the scene once. The step reads it and never
-// writes it; only Simulator's setters and world changes (AddBodies, RemoveBodies) do, between two
-// steps, and they call BuildCaches after changing the scene.
+// The model of a simulation, as MuJoCo's mjModel: the scene (with its collision table), the
+// per-pair friction-set overrides, the external wrenches, and the arrays derived from the scene
+// once. The step reads it and never writes it; only Simulator's setters and world changes
+// (AddBodies, RemoveBodies) do, between two steps, and they call BuildCaches after changing the
+// scene.
 #ifndef NONSMOOTH_SIM_CORE_MODEL_H_
 #define NONSMOOTH_SIM_CORE_MODEL_H_
 

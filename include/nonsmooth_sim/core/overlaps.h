@@ -22,7 +22,7 @@ struct Overlap {
 
 /// Every pair of colliders (on different bodies, or a body and a static collider) that
 /// penetrates deeper than `min_depth` in `state`. O(colliders²): for a check before a run, not
-/// for stepping. Pairs without a collision function are skipped.
+/// for stepping. Pairs without a function in the scene's collision table are skipped.
 std::vector<Overlap> FindOverlaps(const Scene& scene, const std::vector<BodyState>& state,
                                   double min_depth);
 

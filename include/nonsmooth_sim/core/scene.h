@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "nonsmooth_sim/core/collision/collision_table.h"
 #include "nonsmooth_sim/core/friction_law.h"
 #include "nonsmooth_sim/core/shape.h"
 
@@ -58,6 +59,10 @@ struct Scene {
   std::vector<Collider> colliders;
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< [m/s²]
   std::vector<BodyState> initial_state;      ///< one per body
+  /// The pair functions every stage collides this scene's colliders with (collision_table.h):
+  /// the core's closed forms, unless its builder registers more (RegisterFclPairs,
+  /// collision_fcl/fcl_pairs.h; the scene loader takes it from its options).
+  CollisionTable collision_table = CollisionTable::Defaults();
 };
 
 /// μ = largest double, R̄ = 0, ε = 0: a body's own law decides (CombineLaws).
@@ -72,8 +77,9 @@ ContactLaw CombineLaws(const Collider& a, const Collider& b);
 int FindCollider(const Scene& scene, const std::string& name);
 
 /// Appends `model` to `world`: its bodies with their initial_state, its colliders (indices of its
-/// bodies shifted to where they land). Returns the index of its first body. Checks nothing
-/// (ValidateScene does); Simulator::AddBodies is this on the simulator's scene.
+/// bodies shifted to where they land); `world` keeps its collision_table. Returns the index of
+/// its first body. Checks nothing (ValidateScene does); Simulator::AddBodies is this on the
+/// simulator's scene.
 int AppendScene(const Scene& model, Scene* world);
 /// Removes from `world` the bodies b with remove_body[b] (and the colliders on them) and the
 /// static colliders i with remove_collider[i], keeping the order of the rest. body_map and

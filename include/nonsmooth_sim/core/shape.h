@@ -10,8 +10,8 @@
 //   box         half_extents (a, b, c)                           |x| ≤ a, |y| ≤ b, |z| ≤ c
 //
 // URDF conventions: <cylinder radius length> has its axis along z and length = 2l; <box size>
-// is the full size (2a, 2b, 2c). The types are ordered: the collision table (collision.h) is
-// indexed by them and a pair function takes its shapes in this order.
+// is the full size (2a, 2b, 2c). The types are ordered: the collision table (collision_table.h)
+// is indexed by them and a pair function takes its shapes in this order.
 #ifndef NONSMOOTH_SIM_CORE_SHAPE_H_
 #define NONSMOOTH_SIM_CORE_SHAPE_H_
 

@@ -16,8 +16,8 @@
 //    is closed at the midpoint (12); open contacts cost nothing, μ = 0 gives no tangential
 //    components, coulomb or R̄ = 0 no drilling component (ContactDimension).
 //  - Contacts at q_M: the broad phase (broad_phase.h) proposes pairs of colliders on different
-//    bodies (or a body and the static world), the pair function of the collision table
-//    (collision.h) gives points, normals and gaps; those with g ≤ 0 form the index set. W_i
+//    bodies (or a body and the static world), the pair function of the scene's collision table
+//    (collision_table.h) gives points, normals and gaps; those with g ≤ 0 form the index set. W_i
 //    spans one body (against the world) or two (contact_jacobian.h).
 //  - Bodies linked by closed contacts form islands; each island is one contact problem (17),
 //    solved by ContactSolver on its own (the G_ij of contacts on different islands are zero). A

@@ -52,8 +52,8 @@ inline constexpr double kExplicitGyroscopicMaxDtOmega = 0.1;
 /// 1e5 iterations of each island: 4.4 ms for the Tippe-Top on one contact (Gauss-Seidel, Release,
 /// an idle core; 8-17 ms with the 2 cores shared; bounded_work_test prints it, 2026-12-02; the
 /// contacts of an island cost O(n²) per iteration). 1e5 is the cap the converged references of the
-/// trade study use (scripts/tradeoff, tolerance 1e-12, also on the slow `ellipsoid` set) and the
-/// tightest Simulator tests (dynamics_test, tippe_top_test); the default is 1000.
+/// trade study use (scripts/dev/tradeoff, tolerance 1e-12, also on the slow `ellipsoid` set) and the
+/// tightest Simulator tests (multi_body_test, tippe_top_test); the default is 1000.
 /// ValidateSimulatorOptions checks it, and with it `simulate` and the node (parameters and
 /// ~set_solver_properties).
 inline constexpr int kMaxSimulatorIterations = 100000;

@@ -3,6 +3,7 @@
 #ifndef NONSMOOTH_SIM_CORE_TIPPE_TOP_H_
 #define NONSMOOTH_SIM_CORE_TIPPE_TOP_H_
 
+#include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/scene.h"
 
 namespace nonsmooth_sim {
@@ -29,7 +30,7 @@ struct TippeTopInitialConditions {
 
 /// R̄ = 3πR/16, eq. (50).
 constexpr double AverageFrictionRadius(double contact_radius) {
-  return 3.0 * 3.14159265358979323846 * contact_radius / 16.0;
+  return 3.0 * kPi * contact_radius / 16.0;
 }
 
 /// Colliders of MakeTippeTopScene(), in this order.

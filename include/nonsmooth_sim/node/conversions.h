@@ -4,6 +4,7 @@
 #define NONSMOOTH_SIM_NODE_CONVERSIONS_H_
 
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Twist.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
 #include <tf2_msgs/TFMessage.h>
@@ -15,6 +16,9 @@
 #include "nonsmooth_sim/ContactInfoArray.h"
 #include "nonsmooth_sim/SimulationState.h"
 #include "nonsmooth_sim/core/simulator.h"
+#include "nonsmooth_sim/scene_io/urdf_scene.h"
+#include "nonsmooth_sim/world/names.h"
+#include "nonsmooth_sim/world/placement.h"
 
 namespace nonsmooth_sim::node {
 
@@ -22,22 +26,12 @@ namespace nonsmooth_sim::node {
 /// ros::Time(0) means "no time yet" to nodes on /use_sim_time (and rosbag refuses it).
 ros::Time StampOf(double sim_time);
 
-/// Names of the TF frames and topics of one scene. Every collider on a body is a contact "slot":
-/// a TF frame "<collision>_contact" (at its first closed contact, axes t1, t2, n; without a
-/// contact at the collider's origin with world axes) and a wrench topic ~wrench/<collision>.
-struct FrameNames {
-  std::string world;                  ///< fixed frame
-  std::vector<int> slots;             ///< the colliders on bodies, in scene order
-  std::vector<std::string> contacts;  ///< per slot: "<collision name>_contact"
-  std::vector<int> slot_of_collider;  ///< per collider: its slot, -1 for a static one
-};
-FrameNames MakeFrameNames(const Scene& scene, const std::string& world_frame);
-
-/// "" when every TF frame of `scene` (the fixed frame, each body's frame = its name, each contact
-/// frame of MakeFrameNames) and every ~wrench/ topic belongs to one name only; else one line
-/// naming both owners and the frame, e.g. 'collision "x/y" would have the contact frame
-/// "x_y_contact" and topic ~wrench/x_y of collision "x_y" (...)'.
-std::string FrameNameClash(const Scene& scene, const std::string& world_frame);
+// the world's names (world/names.h): frames, topics, and the one-owner rule
+using world::FrameName;
+using world::FrameNameClash;
+using world::FrameNames;
+using world::GraphName;
+using world::MakeFrameNames;
 
 /// The first closed contact of slot `slot`, or nullptr (a scan of the contacts: O(contacts)).
 const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, std::size_t slot);
@@ -46,8 +40,9 @@ const ContactState* SlotContact(const Simulator& sim, const FrameNames& frames, 
 /// the contacts, so that a message over every slot costs O(contacts + colliders).
 void FirstContacts(const Simulator& sim, std::vector<int>* first);
 
-/// A ROS graph name made of [A-Za-z0-9_] (other characters become '_').
-std::string GraphName(const std::string& name);
+/// A pose and a twist of the world as messages (~get_model_state).
+geometry_msgs::Pose ToMsg(const world::Pose& pose);
+geometry_msgs::Twist ToMsg(const world::Twist& twist);
 
 /// Pose of the link frame: the body pose composed with the translation -com_in_link.
 geometry_msgs::Pose LinkPose(const RigidBody& body, const BodyState& state);
@@ -65,6 +60,14 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
 /// stamped `stamp`, after the transforms msg already holds (a message may carry several stamps).
 void AppendTransforms(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                       tf2_msgs::TFMessage* msg);
+
+/// /tf_static for one model: each link without a body of its own (scene_io::FixedLink) in the
+/// frame of its body's link, or in `world_frame` for a link fixed to the world (only with
+/// `world_links`); names prefixed with `prefix` ("" for the start-up model, "<model>/" for a
+/// spawned one); a link that is `world_frame` itself is left out. Stamped `stamp`.
+std::vector<geometry_msgs::TransformStamped> FixedLinkTransforms(
+    const scene_io::UrdfScene& urdf, const std::string& prefix, const std::string& world_frame,
+    bool world_links, const ros::Time& stamp);
 
 /// The contact wrench λ = Λ/Δt on slot `slot`'s collider, summed over its closed contacts, about
 /// and in the axes of its slot frame (one contact: the force and the drilling torque at it). Zero

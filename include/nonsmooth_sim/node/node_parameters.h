@@ -9,9 +9,9 @@
 
 #include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
-#include "nonsmooth_sim/node/initial_conditions.h"
 #include "nonsmooth_sim/scene_io/initial_state.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
+#include "nonsmooth_sim/world/initial_conditions.h"
 
 namespace nonsmooth_sim::node {
 
@@ -20,6 +20,9 @@ using scene_io::UrdfError;
 using scene_io::UrdfScene;
 using scene_io::UrdfSceneOptions;
 using scene_io::ValidateUrdfSceneOptions;
+using world::InitialConditions;
+using world::Merge;
+using world::ValidateInitialConditions;
 
 /// The largest ~max_samples_per_message.
 constexpr int kMaxSamplesPerMessage = 10000;
@@ -38,7 +41,8 @@ struct NodeParameters {
                                   ///< (default: its <robot name>)
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius,
                                   ///< ~max_urdf_bytes (max_bytes: of ~urdf_file,
-                                  ///< robot_description and ~spawn_urdf_model's model_xml)
+                                  ///< robot_description and ~spawn_urdf_model's model_xml);
+                                  ///< collision_table: the defaults (main adds FCL's pairs)
   SimulatorOptions simulator;     ///< ~time_step, ~solver, ~tolerance, ~tolerance_abs,
                                   ///< ~max_iterations, ~relaxation, ~gyroscopic, ~integrator,
                                   ///< ~gap_correction (bool, default true)

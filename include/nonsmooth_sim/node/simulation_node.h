@@ -1,5 +1,5 @@
-// The ROS node: serves a core Simulator to ROS (docs/ros.md). It converts between
-// messages and the core and holds no physics.
+// The ROS node: serves a world::World to ROS (docs/ros.md). Its handlers convert a request into a
+// World call and the result into a response; it holds no physics and no world rules.
 //
 // Threads: the integrator runs on its own thread, paced by the wall clock (sim time = wall time ×
 // ~real_time_factor, or as fast as possible for 0); services and the diagnostics wall timer run
@@ -20,8 +20,11 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -44,7 +47,9 @@
 #include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "nonsmooth_sim/node/conversions.h"
+#include "nonsmooth_sim/node/master_calls.h"
 #include "nonsmooth_sim/node/node_parameters.h"
+#include "nonsmooth_sim/world/world.h"
 
 namespace nonsmooth_sim::node {
 
@@ -67,36 +72,6 @@ class SimulationNode {
     std::int64_t period = 0;
     std::int64_t countdown = 0;
   };
-
-  /// A model of the world (get_world_properties): the bodies and colliders of one URDF.
-  struct Model {
-    std::string name;
-    /// of its body and collider names in the core scene (and its TF frames): "" for the start-up
-    /// model, "<name>/" for a spawned one
-    std::string prefix;
-    std::vector<int> bodies;     ///< free bodies; the first is the canonical one
-    std::vector<int> colliders;  ///< its collisions (on its bodies and its static links)
-    std::string description;  ///< the parameter holding its URDF ("" for the start-up model)
-  };
-  /// ~spawn_urdf_model refuses a model that would make the world larger than this many bodies
-  /// (a bound on the work per step).
-  static constexpr std::size_t kMaxWorldBodies = 4096;
-  /// ~spawn_urdf_model refuses a model that would make the world hold more collisions than this
-  /// (a bound on the work per step and on the ~wrench/ topics).
-  static constexpr std::size_t kMaxWorldCollisions = 16384;
-  /// A wrench of ~apply_body_wrench: constant over [start, end) of sim time.
-  struct ExternalWrench {
-    int body = 0;
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< world axes [N]
-    Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< world axes [N m]
-    Eigen::Vector3d point_in_body = Eigen::Vector3d::Zero();  ///< from S, body axes [m]
-    double start = 0.0;
-    double end = 0.0;  ///< +inf: until cleared
-  };
-  /// |force| and |torque| of ~apply_body_wrench at most this [N], [N m].
-  static constexpr double kMaxExternalForce = 1e6;
-  /// ~apply_body_wrench keeps at most this many wrenches at once (a bound on the work per step).
-  static constexpr std::size_t kMaxWrenches = 1000;
 
   /// Accumulated over a diagnostics period (and over the whole run).
   struct RunStatistics {
@@ -180,61 +155,63 @@ class SimulationNode {
   /// What a change of the world leaves for the master (AdvertiseWrenches, without the mutex).
   struct WrenchTopics {
     std::vector<std::string> to_advertise;  ///< ~wrench/ topics of new slots (relative names)
-    std::vector<ros::Publisher> retired;    ///< of removed slots: their last copies
+    std::vector<ros::Publisher> dropped;    ///< kept ones beyond the bound: their last copies
   };
   /// After bodies or colliders were added or removed: the contact frames and wrench topics of the
-  /// world, the markers cleared (mutex held). New slots have no publisher yet.
+  /// world, the markers cleared (simulator mutex and world_mutex_ held). A new slot takes a kept
+  /// publisher of its topic if there is one, else it has none until AdvertiseWrenches; a removed
+  /// slot's publisher sends a zero wrench and is kept (kept_wrench_pubs_).
   WrenchTopics WorldChanged();
-  /// Advertises the new topics and installs them in their slots (takes the mutex for that only),
-  /// then drops the retired publishers (unadvertised): the master calls of a spawn or delete,
-  /// made without the simulator mutex. Call with world_mutex_ held.
+  /// Advertises the new topics and installs them in their slots (takes the mutex for that only;
+  /// a topic whose slot is gone meanwhile is kept), then drops the publishers kept beyond the
+  /// bound (unadvertised): the master calls of a spawn or delete, made on master_calls_.
   void AdvertiseWrenches(WrenchTopics* topics);
+  /// Keeps the publisher of a removed slot (mutex held); the oldest beyond the bound go to
+  /// `dropped`.
+  void KeepWrenchPublisher(const ros::Publisher& publisher, std::vector<ros::Publisher>* dropped);
   std::string WrenchTopic(std::size_t slot) const;  ///< "wrench/<collision>" (mutex held)
-  void BuildModels();
-  int ModelIndex(const std::string& name) const;       ///< -1 if unknown
-  /// 'no model "<name>"; the models are: a, b' (the reply to an unknown model name)
-  std::string UnknownModel(const std::string& name) const;
-  int ScopedBodyIndex(const std::string& name) const;  ///< "<model>::<link>" or "<link>"; -1
-  std::string ScopedBodyName(int body) const;          ///< "<model>::<link>"
-  /// The body a reference frame names: -1 for "" or "world"; throws std::invalid_argument naming
-  /// `field` for anything else that is not a body.
-  int ReferenceBody(const std::string& name, const char* field) const;
-  /// Sets the core's external wrenches from wrenches_ for the next `interval` [s] (integrator).
-  void ApplyWrenches(double interval);
-
+  /// Sends every model's fixed links on /tf_static as one latched message.
+  void PublishFixedLinks();
   // --- diagnostics (spinner thread)
   void OnDiagnosticsTimer(const ros::WallTimerEvent&);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  int BodyIndex(const std::string& name) const;    ///< in the world, by its name; -1 if unknown
   std::string FrictionSetSummary() const;
 
   const NodeParameters parameters_;
-  const UrdfScene urdf_;   ///< the start-up model
-  const int initial_body_;  ///< of ~reset, an index into urdf_
-  /// the world with the configured start (reset_simulation, reset_world): the start-up URDF with
-  /// its configured start, and each spawned model at its spawn pose; kept in step with sim_'s
-  /// bodies and colliders (mutex held)
-  Scene configured_scene_;
   FrameNames frames_;  ///< of the current world (WorldChanged)
 
   ros::NodeHandle nh_, private_nh_;
   ros::Publisher clock_pub_, tf_pub_, contacts_pub_, state_pub_, markers_pub_;
+  /// /tf_static (latched): the links without a body of their own, per model (the start-up one
+  /// at construction, spawned ones under world_mutex_); PublishFixedLinks sends them all
+  ros::Publisher tf_static_pub_;
+  std::map<std::string, std::vector<geometry_msgs::TransformStamped>> fixed_links_;
   std::vector<ros::Publisher> wrench_pubs_;  ///< per slot; empty until advertised
   std::vector<ros::ServiceServer> services_;
   ros::WallTimer diagnostics_timer_;
   diagnostic_updater::Updater updater_;
 
   std::mutex mutex_;
-  /// Serialises ~spawn_urdf_model and ~delete_model, held across their master calls (taken
-  /// before mutex_, never while holding it).
+  /// Serialises ~spawn_urdf_model and ~delete_model, held while they wait for their master calls
+  /// (taken before mutex_, never while holding it).
   std::mutex world_mutex_;
+  /// ~wrench/ publishers of removed collisions (resolved topic → publisher, and the topics oldest
+  /// first), under mutex_. They stay advertised, silent, and serve the next collision with
+  /// that topic: unadvertising calls the master while roscpp holds the lock that every publish
+  /// and getNumSubscribers of the integrator takes, so a slow or stopped master would stall the
+  /// stepping (under the simulator mutex) and with it every service. Beyond
+  /// kMaxKeptWrenchTopics the oldest is unadvertised (AdvertiseWrenches).
+  std::map<std::string, ros::Publisher> kept_wrench_pubs_;
+  std::deque<std::string> kept_wrench_order_;
+  static constexpr std::size_t kMaxKeptWrenchTopics = 1024;
   std::condition_variable wake_;
   std::atomic<int> waiting_services_{0};
   bool stop_ = false;
 
   // --- guarded by mutex_
-  std::unique_ptr<Simulator> sim_;
+  /// the world: the simulator, its models, wrenches and the configured start (resets)
+  std::unique_ptr<world::World> world_;
   /// [s] the node's tick, ~time_step: its step with fixed steps; with ~accuracy the unit of ~step
   /// and of the publish periods (the stepper changes sim_'s time step at every step)
   double tick_ = 0.0;
@@ -254,10 +231,6 @@ class SimulationNode {
   Clock::time_point anchor_wall_;
   std::int64_t steps_since_anchor_ = 0;
   RunStatistics period_, total_;
-  std::vector<Model> models_;
-  std::vector<ExternalWrench> wrenches_;
-  bool wrenches_active_ = false;  ///< ApplyWrenches before the next step
-  std::vector<Eigen::Vector3d> wrench_force_, wrench_torque_;  ///< per body, reused
   double run_wall_ = 0.0;  ///< [s] of wall time spent unpaused, up to the last pause
   Clock::time_point unpaused_at_;
   double running_sim_time_ = 0.0;  ///< [s] of sim time the integrator advanced while unpaused
@@ -293,7 +266,11 @@ class SimulationNode {
     double pace = 0.0;
     std::string fault;
     std::int64_t faults = 0;
+    /// bodies that can no longer touch anything (world/lost_bodies.h): "<name> <why>"
+    std::vector<std::string> lost;
   } snapshot_;
+  /// the lost bodies already logged (a WARN once each; diagnostics thread)
+  std::vector<std::string> logged_lost_;
   double previous_running_wall_ = 0.0;
   double previous_running_sim_time_ = 0.0;
 
@@ -301,6 +278,15 @@ class SimulationNode {
   /// other) never holds a thread of the node's spinner, so the other services keep answering
   ros::CallbackQueue step_queue_;
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;
+  /// ~spawn_urdf_model's and ~delete_model's queue and thread (one at a time, world_mutex_)
+  ros::CallbackQueue world_queue_;
+  std::unique_ptr<ros::AsyncSpinner> world_spinner_;
+
+  /// the master calls of spawns and deletes (model_services.cpp): destroyed before the members
+  /// above, which its queued calls use, after the integrator has stopped
+  MasterCalls master_calls_;
+  /// the longest a spawn or delete waits for its master calls (docs/ros.md, "Bounds")
+  static constexpr std::chrono::milliseconds kMasterTimeout{5000};
 
   std::thread integrator_;  // last: started when everything above exists
 };

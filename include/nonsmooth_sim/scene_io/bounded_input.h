@@ -10,7 +10,10 @@
 #ifndef NONSMOOTH_SIM_SCENE_IO_BOUNDED_INPUT_H_
 #define NONSMOOTH_SIM_SCENE_IO_BOUNDED_INPUT_H_
 
+#include <yaml-cpp/yaml.h>
+
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -42,6 +45,22 @@ std::string DescribeBytes(std::size_t bytes);
 /// a level, and each block level (a deeper indentation, or a "- " / "? " indicator) one more;
 /// quoted scalars and comments are skipped.
 void CheckYamlText(std::string_view text, std::size_t max_bytes = kMaxInputBytes);
+
+/// A refused YAML text: the reason and where (1-based line and column).
+struct YamlTextError : std::invalid_argument {
+  YamlTextError(int line, int column, const std::string& reason)
+      : std::invalid_argument(reason), line(line), column(column) {}
+  int line;
+  int column;
+};
+
+/// The one document of `text` (a Null node for a text without one), after CheckYamlText. Throws
+/// YamlTextError: "not valid YAML: <yaml-cpp's reason>" at the place it names, or "a second YAML
+/// document ...; allowed: one" where the second begins. The documents are counted by yaml-cpp's
+/// event parser, stopping at the second: YAML::LoadAll (yaml-cpp 0.7) never returns on a token
+/// that no document consumes, such as a "," outside brackets, and appends empty documents until
+/// the memory is exhausted.
+YAML::Node LoadOneYamlDocument(const std::string& text, std::size_t max_bytes = kMaxInputBytes);
 
 /// Throws std::invalid_argument "<what> "<name>...": <n> bytes, more than the bound of 256"
 /// unless `name` has at most kMaxNameLength bytes (the name quoted only by its start).

@@ -28,8 +28,9 @@
 //    link) when empty; every name once in the scene; "ground" is the ground plane's when
 //    options.ground (GroundPlane(), the last collider).
 //  - order: world colliders, then each body's (its own link's first), then the ground.
-//  - a pair of shape types that can meet (on different bodies, or a body and the world) but has
-//    no collide function (core/collision/collision.h) is reported in warnings.
+//  - the scene collides with options.collision_table (Scene::collision_table): a pair of shape
+//    types that can meet (on different bodies, or a body and the world) but has no function in it
+//    (core/collision/collision_table.h) is reported in warnings.
 //
 // Contact laws (per collider, from the tags of its own link):
 //      <gazebo reference="link"><collision><surface><friction>
@@ -126,6 +127,17 @@ struct UrdfSceneOptions {
   /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
   /// in [1, kMaxInputBytesOption]
   std::size_t max_bytes = kMaxInputBytes;
+  /// the pair functions of the scene (its Scene::collision_table): the core's closed forms, or
+  /// with RegisterFclPairs (collision_fcl/fcl_pairs.h) also the convex pairs without one
+  CollisionTable collision_table = CollisionTable::Defaults();
+};
+
+/// A link without a body of its own, for TF: merged into body `body` by fixed joints (`pose`: its
+/// frame in that body's link frame) or fixed to the world (body kWorld, `pose` in the world).
+struct FixedLink {
+  std::string name;
+  int body = kWorld;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
 
 struct UrdfScene {
@@ -141,6 +153,9 @@ struct UrdfScene {
   /// Per body: the links merged into it by fixed joints, in document order (its own link,
   /// RigidBody::name, excluded).
   std::vector<std::vector<std::string>> merged_links;
+  /// Every link that is not a body's own (the static world's, those merged into bodies), in
+  /// document order per group: fixed transforms for TF.
+  std::vector<FixedLink> fixed_links;
   /// What was skipped and why, one line each ("urdf: ...").
   std::vector<std::string> warnings;
 };

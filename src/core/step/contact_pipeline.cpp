@@ -106,8 +106,11 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
       pair_was_closed && data->second_order && data->previous_time_step > 0.0;
   // points up to the hysteresis gap (the margin for persistent ones): the index set below
   // decides which close
-  const int count = Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,
-                            persistent ? kPersistentContactMargin : kContactHysteresis, geometry);
+  const int count =
+      model.scene.collision_table.Collide(collider_a.shape, pose_a, collider_b.shape, pose_b,
+                                          persistent ? kPersistentContactMargin
+                                                     : kContactHysteresis,
+                                          geometry);
   if (count <= 0) return;  // apart, or no pair function (the scene loader reports those)
   const ContactLaw law = model.PairLaw(first, second);
   // a new contact's first tangent: a plane's x axis (the ground: world x̂), else world x̂
@@ -193,8 +196,9 @@ void ContactPipeline::RecordEndGaps(const Model& model, const std::vector<BodySt
     UpdateColliderPose(model, state, first.collider_a, /*end=*/true, data);
     UpdateColliderPose(model, state, first.collider_b, /*end=*/true, data);
     ContactGeometry* end = geometry_.data();
-    const int count = Collide(colliders[a].shape, data->collider_pose[a], colliders[b].shape,
-                              data->collider_pose[b], kPersistentContactMargin, end);
+    const int count = model.scene.collision_table.Collide(
+        colliders[a].shape, data->collider_pose[a], colliders[b].shape, data->collider_pose[b],
+        kPersistentContactMargin, end);
     for (std::size_t k = i; k < j; ++k) {
       double gap = std::numeric_limits<double>::infinity();  // the feature is gone
       for (int e = 0; e < count; ++e) {

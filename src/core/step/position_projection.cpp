@@ -35,8 +35,9 @@ bool PositionProjection::CorrectGaps(const Model& model, StepData* data,
     const std::size_t b = static_cast<std::size_t>(first.collider_b);
     UpdateColliderPose(model, *state, first.collider_a, /*end=*/true, data);
     UpdateColliderPose(model, *state, first.collider_b, /*end=*/true, data);
-    const int count = Collide(model.scene.colliders[a].shape, data->collider_pose[a],
-                              model.scene.colliders[b].shape, data->collider_pose[b], 0.0, end);
+    const int count = model.scene.collision_table.Collide(
+        model.scene.colliders[a].shape, data->collider_pose[a], model.scene.colliders[b].shape,
+        data->collider_pose[b], 0.0, end);
     // a body resting on several points of one static collider (a face, corners, a capsule on
     // its side): levelled by a rotation and translation (LevelOnPoints), not only lifted
     if (first.body_a == kWorld && j - i >= 2 &&

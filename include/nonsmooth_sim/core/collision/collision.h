@@ -1,7 +1,7 @@
 // Narrow phase: one pure function per pair of shape types, chosen from a [type][type] table (as
-// MuJoCo's mjCOLLISIONFUNC and Bullet's dispatcher). Each pair function lives in its own file
-// pair under src/core/collision/ with its own test; a new pair is one function plus one line of
-// registration (collision_table.cpp).
+// MuJoCo's mjCOLLISIONFUNC and Bullet's dispatcher; the table is collision_table.h). Each pair
+// function lives in its own file pair under src/core/collision/ with its own test; a new pair is
+// one function plus one line of registration (CollisionTable::Defaults, collision_table.cpp).
 //
 // A pair function receives the two shapes in ShapeType order (a.type ≤ b.type) with their world
 // poses and returns up to kMaxPairContacts contact points. For each point:
@@ -46,20 +46,6 @@ struct ContactGeometry {
 using CollideFunction = int (*)(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
                                 const Eigen::Isometry3d& pose_b, double margin,
                                 ContactGeometry* out);
-
-/// The registered function for a pair of types in either order (nullptr: no function; the pair
-/// is skipped and reported by the scene loader).
-CollideFunction FindCollideFunction(ShapeType a, ShapeType b);
-/// Registers (or replaces) the function of a pair; `a` ≤ `b` in ShapeType order (throws
-/// std::invalid_argument otherwise: the function is called with its shapes in that order).
-/// Not thread-safe: call at start-up, before simulators step (e.g. RegisterFclPairs()).
-void RegisterCollideFunction(ShapeType a, ShapeType b, CollideFunction function);
-
-/// Collides two shapes in any order: calls the pair function with the shapes in ShapeType order
-/// and, if it swapped them, swaps point_a/point_b and flips the normal, so that the result is
-/// always "from a to b" as passed here. Returns -1 if no function is registered for the pair.
-int Collide(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
-            const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out);
 
 /// Tolerance on the height difference across a face below which the face lies flat on a plane
 /// and becomes a face contact (four face points) [m]: see collision/plane_cylinder.h and

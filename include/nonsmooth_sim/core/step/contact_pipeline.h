@@ -1,9 +1,9 @@
 // The contact pipeline of a step: the index set (12) at the midpoint q_M, eq. (12) of the paper.
 //   broad phase (broad_phase.h): every body collider against every static plane, the rest by
 //     sweep and prune over bounding spheres, in a deterministic order (by collider pair);
-//   narrow phase: the pair function of the collision table (collision.h) gives points, normals,
-//     gaps and features; those with g(q_M) ≤ 0 (≤ kContactHysteresis for a pair closed in the
-//     last step) are the closed contacts;
+//   narrow phase: the pair function of the scene's collision table (collision_table.h) gives
+//     points, normals, gaps and features; those with g(q_M) ≤ 0 (≤ kContactHysteresis for a pair
+//     closed in the last step) are the closed contacts;
 //   per closed contact: its memory across steps by (pair, feature) (contact_memory.h), its frame
 //     with the tangent carried over (contact_frame.h), its W over one or two bodies and γ^B
 //     (contact_jacobian.h).
