@@ -186,7 +186,7 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     }
     info.friction_set = std::string(FrictionSetName(c.law.friction_set));
     info.mu = c.law.mu;
-    info.average_friction_radius = c.dimension == 4 ? c.law.rbar : 0.0;
+    info.average_friction_radius = c.dimension >= 4 ? c.law.rbar : 0.0;
     info.closed = true;
     info.gap = c.gap;
     Set(c.point, &info.position);

@@ -77,6 +77,28 @@ inline Eigen::Matrix<double, 2, 3> ContactRollingRows(const ContactFrame& frame,
   return rows;
 }
 
+/// The rolling rows of a contact's two sides (ContactRollingRows, in K; side[k] as
+/// ContactJacobian::side[k]) and J_R R with them (Θ⁻¹ = R Rᵀ): set only where the contact has
+/// rolling components.
+struct RollingSide {
+  Eigen::Matrix<double, 2, 3> rows = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix<double, 2, 3> metric = Eigen::Matrix<double, 2, 3>::Zero();
+};
+struct RollingJacobian {
+  RollingSide side[2];
+};
+
+/// Sets the rolling rows of a side and J_R R with them.
+inline void SetRollingRows(const Eigen::Matrix<double, 2, 3>& rows, const BodyInertia& body,
+                           RollingSide* side) {
+  side->rows = rows;
+  if (body.principal) {
+    side->metric.noalias() = rows * body.inverse_inertia_factor.diagonal().asDiagonal();
+  } else {
+    side->metric.noalias() = rows * body.inverse_inertia_factor;
+  }
+}
+
 /// Sets J of a side and J R with it (the side's body's inertia).
 inline void SetAngularRows(const Eigen::Matrix<double, 4, 3>& angular, const BodyInertia& body,
                            ContactSide* side) {
@@ -116,6 +138,19 @@ inline Eigen::Matrix4d SideDelassusBlock(const BodyInertia& body, const ContactJ
       body.inverse_mass * (i.linear.topRows<3>() * j.linear.topRows<3>().transpose());
   if (s.sign * t.sign < 0.0) block = -block;
   return block;
+}
+
+/// The rolling rows' part of G_ij (16) for sides s (of contact i) and t (of contact j) on one
+/// body, beside SideDelassusBlock's 4 × 4 (rows and columns N, T1, T2, τ): the 4 × 2 block
+/// sign_s sign_t (J_s R)(J_R,t R)ᵀ of (i's 4 rows, j's rolling rows), the 2 × 4 block of (i's
+/// rolling rows, j's 4 rows) and the 2 × 2 block (J_R,s R)(J_R,t R)ᵀ; the rolling rows have no
+/// linear part. A contact without rolling rows passes zero rows (its blocks come out zero).
+inline void RollingDelassusParts(const ContactSide& s, const RollingSide& rs, const ContactSide& t,
+                                 const RollingSide& rt, Eigen::Matrix<double, 6, 6>* block) {
+  const double sign = s.sign * t.sign;
+  block->topRightCorner<4, 2>().noalias() += sign * (s.angular_metric * rt.metric.transpose());
+  block->bottomLeftCorner<2, 4>().noalias() += sign * (rs.metric * t.angular_metric.transpose());
+  block->bottomRightCorner<2, 2>().noalias() += sign * (rs.metric * rt.metric.transpose());
 }
 
 /// The same for one side with itself, the part of G_ii its body gives: L Lᵀ = diag(1, 1, 1, 0)
