@@ -92,6 +92,7 @@ ContactLaw GroundLaw() {
   law.mu = kGroundFriction;
   law.rbar = 0.0;
   law.restitution = 0.0;
+  law.rolling_resistance = std::numeric_limits<float>::max();
   return law;
 }
 
@@ -109,6 +110,7 @@ ContactLaw CombineLaws(const Collider& a, const Collider& b) {
   law.mu = std::min(a.law.mu, b.law.mu);
   law.rbar = std::max(a.law.rbar, b.law.rbar);
   law.restitution = std::max(a.law.restitution, b.law.restitution);
+  law.rolling_resistance = std::min(a.law.rolling_resistance, b.law.rolling_resistance);
   // the set of the first collider on a body (a comes first in the scene unless it is static)
   law.friction_set = a.body != kWorld ? a.law.friction_set : b.law.friction_set;
   return law;
@@ -128,6 +130,9 @@ void ValidateLaw(const std::string& where, const ContactLaw& law) {
   }
   if (!(law.restitution >= 0.0 && law.restitution <= 1.0)) {
     Reject(where + ".restitution", law.restitution, "in [0, 1]");
+  }
+  if (!(std::isfinite(law.rolling_resistance) && law.rolling_resistance >= 0.0f)) {
+    Reject(where + ".rolling_resistance", law.rolling_resistance, "finite, >= 0 [m]");
   }
   if (!IsFrictionSet(law.friction_set)) {
     throw std::invalid_argument(where + ".friction_set is not one of " + FrictionSetNameList());

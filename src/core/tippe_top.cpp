@@ -37,6 +37,7 @@ Scene MakeTippeTopScene(const TippeTopParameters& parameters,
   law.rbar = AverageFrictionRadius(parameters.contact_radius);  // (50)
   law.restitution = parameters.restitution;
   law.friction_set = parameters.friction_set;
+  law.rolling_resistance = static_cast<float>(parameters.rolling_resistance);
 
   Collider big;
   big.name = "big_sphere";

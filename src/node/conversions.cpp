@@ -186,7 +186,7 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     }
     info.friction_set = std::string(FrictionSetName(c.law.friction_set));
     info.mu = c.law.mu;
-    info.average_friction_radius = c.dimension == 4 ? c.law.rbar : 0.0;
+    info.average_friction_radius = c.dimension >= 4 ? c.law.rbar : 0.0;
     info.closed = true;
     info.gap = c.gap;
     Set(c.point, &info.position);
@@ -202,6 +202,10 @@ void FillContacts(const Simulator& sim, const StepStatistics& last_step, const F
     info.normal_velocity = c.relative_velocity[0];
     info.tangential_velocity = {c.relative_velocity[1], c.relative_velocity[2]};
     info.drilling_velocity = c.relative_velocity[3];
+    const bool rolling = c.dimension == 6;
+    info.rolling_resistance = rolling ? static_cast<double>(c.law.rolling_resistance) : 0.0;
+    info.rolling_percussion = {c.rolling_percussion[0], c.rolling_percussion[1]};
+    info.rolling_torque = {c.rolling_percussion[0] / dt, c.rolling_percussion[1] / dt};
   }
 }
 
@@ -286,7 +290,11 @@ bool FillWrench(const Simulator& sim, std::size_t slot, const FrameNames& frames
           (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
            c.percussion[2] * c.frame.tangent2);
       force += f;
-      torque += (c.point - first->point).cross(f) + sign / dt * c.percussion[3] * c.frame.normal;
+      // and its drilling and rolling torques (Λ_R about t1, t2; 0 without rolling)
+      torque += (c.point - first->point).cross(f) +
+                sign / dt *
+                    (c.percussion[3] * c.frame.normal + c.rolling_percussion[0] * c.frame.tangent1 +
+                     c.rolling_percussion[1] * c.frame.tangent2);
     }
     // in the slot frame's axes (t1, t2, n of the first contact)
     const Eigen::Matrix3d axes = FrameRotation(first->frame).toRotationMatrix();

@@ -240,6 +240,7 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   p.scene.friction_set = *set;
   p.scene.mu = r.Number("mu");
   p.scene.contact_radius = r.Number("contact_radius");
+  p.scene.rolling_resistance = r.Number("rolling_resistance");
 
   // simulator and solver
   r.Number("time_step", &p.simulator.time_step);

@@ -214,6 +214,8 @@ ContactLaw LawFromSurface(const LinkSurface& surface, const UrdfSceneOptions& op
   law.restitution = surface.restitution;
   const double radius = options.contact_radius.value_or(surface.patch_radius);
   law.rbar = AverageFrictionRadius(radius);  // (50)
+  law.rolling_resistance = static_cast<float>(options.rolling_resistance.value_or(
+      surface.rolling_resistance.value_or(surface.rolling_friction)));
   if (options.mu) {
     law.mu = *options.mu;
   } else {
@@ -270,6 +272,7 @@ std::optional<TippeTopParameters> TippeTopOf(const Scene& scene, int body_index,
   p.mu = big->law.mu;
   p.contact_radius = options.contact_radius.value_or(surface.patch_radius);
   p.restitution = big->law.restitution;
+  p.rolling_resistance = big->law.rolling_resistance;
   p.friction_set = big->law.friction_set;
   return p;
 }
@@ -632,6 +635,11 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
     throw std::invalid_argument("contact_radius = " + Format(*options.contact_radius) +
                                 ": must be in [0, " + Format(kMaxLength) +
                                 "] [m] (and at most the size of every shape of a free body)");
+  }
+  if (options.rolling_resistance &&
+      !(*options.rolling_resistance >= 0.0 && *options.rolling_resistance <= kMaxLength)) {
+    throw std::invalid_argument("rolling_resistance = " + Format(*options.rolling_resistance) +
+                                ": must be in [0, " + Format(kMaxLength) + "] [m]");
   }
   if (options.max_bytes < 1 || options.max_bytes > kMaxInputBytesOption) {
     throw std::invalid_argument("max_bytes = " + std::to_string(options.max_bytes) +

@@ -200,12 +200,22 @@ void ReadGazebo(const XMLElement* gazebo, LinkSurface* surface, std::vector<std:
   if (const XMLElement* mu1 = gazebo->FirstChildElement("mu1")) {
     surface->mu = friction(mu1);
   }
+  // Bullet's rolling friction (a length: the rolling torque's bound per unit normal force)
+  const auto rolling = [&](const XMLElement* e) {
+    return TextNumber(e, 0.0, kMaxLength, radius_range.c_str());
+  };
+  if (const XMLElement* r = gazebo->FirstChildElement("rolling_friction")) {
+    surface->rolling_friction = rolling(r);
+  }
   for (const XMLElement* collision = gazebo->FirstChildElement("collision"); collision != nullptr;
        collision = collision->NextSiblingElement("collision")) {
     const XMLElement* friction_element = Child(collision, {"surface", "friction"});
     if (friction_element == nullptr) continue;
     if (const XMLElement* mu = Child(friction_element, {"ode", "mu"})) {
       surface->mu = friction(mu);
+    }
+    if (const XMLElement* r = Child(friction_element, {"bullet", "rolling_friction"})) {
+      surface->rolling_friction = rolling(r);
     }
     if (const XMLElement* mu2 = Child(friction_element, {"ode", "mu2"})) {
       if (friction(mu2) != surface->mu) {
@@ -294,10 +304,11 @@ ShapeOverride ReadShapeOverride(const XMLElement* collision) {
   return result;
 }
 
-// <nonsmooth_sim reference="link">: restitution, friction set and shape overrides of one link.
+// <nonsmooth_sim reference="link">: restitution, friction set, rolling resistance and shape
+// overrides of one link.
 void ReadNonsmoothSim(const XMLElement* block, UrdfXml* result) {
   static const Names kElements = {
-      "restitution", "friction_set", "collision name=\"...\""};
+      "restitution", "friction_set", "rolling_resistance", "collision name=\"...\""};
   RequireOnlyAttributes(block, {"reference"});
   const char* ref = block->Attribute("reference");
   if (ref == nullptr) Fail(block, "attribute reference (a link name) is missing");
@@ -305,18 +316,24 @@ void ReadNonsmoothSim(const XMLElement* block, UrdfXml* result) {
   LinkSurface& surface = result->surfaces[ref];
   bool has_restitution = false;
   bool has_friction_set = false;
+  bool has_rolling_resistance = false;
   for (const XMLElement* e = block->FirstChildElement(); e != nullptr;
        e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
-    if (tag == "restitution" || tag == "friction_set") {
+    if (tag == "restitution" || tag == "friction_set" || tag == "rolling_resistance") {
       RequireOnlyAttributes(e, {});
       RequireNoChildren(e);
-      bool& seen = tag == "restitution" ? has_restitution : has_friction_set;
+      bool& seen = tag == "restitution"    ? has_restitution
+                   : tag == "friction_set" ? has_friction_set
+                                           : has_rolling_resistance;
       if (seen) Fail(e, "<" + tag + "> given twice in one block");
       seen = true;
     }
     if (tag == "restitution") {
       surface.restitution = TextNumber(e, 0.0, 1.0, "[0, 1]");
+    } else if (tag == "rolling_resistance") {
+      surface.rolling_resistance =
+          TextNumber(e, 0.0, kMaxLength, Range(0.0, kMaxLength, " m").c_str());
     } else if (tag == "friction_set") {
       const std::vector<std::string> tokens = Tokens(e->GetText() != nullptr ? e->GetText() : "");
       const std::optional<FrictionSet> set =

@@ -154,6 +154,14 @@ const std::map<std::string, Setter>& ValueOptions() {
                                            Format(scene_io::kMaxFriction) + "]");
          c.mu_given = true;
        }},
+      {"--rolling-resistance",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.parameters.rolling_resistance =
+             ParseNumber(o, v, 0.0, scene_io::kMaxLength, false, false,
+                         "a rolling-resistance length in [0, " + Format(scene_io::kMaxLength) +
+                             "] m");
+         c.rolling_resistance_given = true;
+       }},
       {"--contact-radius",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.parameters.contact_radius =
@@ -249,6 +257,9 @@ std::string UsageText() {
     << kDirectSolveAfter << " iterations\n"
        "  --mu MU               friction coefficient of every contact (default: 0.3 for the\n"
        "                        Tippe-Top, the URDF's for --urdf)\n"
+       "  --rolling-resistance METRES\n"
+       "                        rolling-resistance length mu_r of every contact (default 0:\n"
+       "                        none, or the URDF's); acts with the rolling friction sets\n"
        "  --contact-radius R    contact-disc radius [m], Rbar = 3 pi R / 16 (default 5e-4 for\n"
        "                        the Tippe-Top, the URDF's patch_radius for --urdf)\n"
        "  --inclination THETA   Tippe-Top: initial inclination [rad] in [0, pi] (default 0.1)\n"

@@ -22,6 +22,7 @@ struct RunConfig {
   bool friction_set_given = false;   ///< --friction-set was given (a URDF's own sets otherwise)
   bool mu_given = false;             ///< --mu was given
   bool contact_radius_given = false; ///< --contact-radius was given
+  bool rolling_resistance_given = false;  ///< --rolling-resistance was given
   SimulatorOptions options;          ///< Δt, solver, gyroscopic scheme, integrator
   /// --accuracy (tolerance 0: fixed steps of options.time_step), --min-dt, --max-dt
   AccuracyOptions accuracy;

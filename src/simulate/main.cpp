@@ -145,6 +145,9 @@ scene_io::UrdfSceneOptions UrdfOptions(const RunConfig& config) {
   if (config.friction_set_given) options.friction_set = config.parameters.friction_set;
   if (config.mu_given) options.mu = config.parameters.mu;
   if (config.contact_radius_given) options.contact_radius = config.parameters.contact_radius;
+  if (config.rolling_resistance_given) {
+    options.rolling_resistance = config.parameters.rolling_resistance;
+  }
   return options;
 }
 

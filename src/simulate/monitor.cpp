@@ -161,6 +161,14 @@ CsvRecorder::CsvRecorder(const Simulator& simulator, long expected_rows) {
     for (const char* field : {"_closed", "_lambda_n", "_lambda_t1", "_lambda_t2", "_lambda_tau"}) {
       columns_.push_back(colliders[i].name + field);
     }
+    // the rolling percussion only where the sphere's law has rolling components (the ground's
+    // law is neutral: the sphere's decides)
+    sphere_rolling_.push_back(HasRolling(colliders[i].law) ? 1 : 0);
+    if (sphere_rolling_.back() != 0) {
+      for (const char* field : {"_lambda_r1", "_lambda_r2"}) {
+        columns_.push_back(colliders[i].name + field);
+      }
+    }
   }
   columns_.push_back("iterations");
   columns_.push_back("converged");
@@ -183,7 +191,8 @@ void CsvRecorder::Record(double time, const Simulator& simulator, const StepStat
                         VerticalSpin(s)};
   values_.insert(values_.end(), std::begin(row), std::end(row));
   // per sphere: its (one) ground contact, closed or not
-  for (int sphere : spheres_) {
+  for (std::size_t n = 0; n < spheres_.size(); ++n) {
+    const int sphere = spheres_[n];
     const ContactState* contact = nullptr;
     for (const ContactState& c : simulator.contacts()) {
       if (c.collider_a == sphere || c.collider_b == sphere) contact = &c;
@@ -191,6 +200,10 @@ void CsvRecorder::Record(double time, const Simulator& simulator, const StepStat
     values_.push_back(contact != nullptr ? 1.0 : 0.0);
     for (int k = 0; k < 4; ++k)
       values_.push_back(contact != nullptr ? contact->percussion[k] : 0.0);
+    if (sphere_rolling_[n] == 0) continue;
+    for (int k = 0; k < 2; ++k) {
+      values_.push_back(contact != nullptr ? contact->rolling_percussion[k] : 0.0);
+    }
   }
   values_.push_back(stats.solver.iterations);
   values_.push_back(stats.solver.converged ? 1.0 : 0.0);

@@ -116,6 +116,7 @@ class CsvRecorder {
  private:
   std::vector<std::string> columns_;
   std::vector<int> spheres_;  // the body's sphere colliders, one column group each
+  std::vector<char> sphere_rolling_;  // per sphere: its law has rolling (two more columns)
   std::vector<double> values_;
 };
 

@@ -30,14 +30,16 @@ TEST(MappedDrillingSets, TheMapFollowsTheOption) {
     const bool drilling = ContactDimension(law) == 4;
     const Eigen::Vector4d a(1.0, 1.0, 1.0, rbar);
     const bool maps_with_option = set == FrictionSet::kExact || set == FrictionSet::kCylinder;
+    // sphere and the rolling rows (S_F without rolling components) are always mapped
+    const bool always = set == FrictionSet::kSphere || set == FrictionSet::kRolling ||
+                        set == FrictionSet::kRollingDecoupled;
     EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/true),
-              drilling && (maps_with_option || set == FrictionSet::kSphere) ? a
-                                                                           : Eigen::Vector4d::Ones())
+              drilling && (maps_with_option || always) ? a : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
     EXPECT_EQ(ContactMapDiagonal(law, /*map_drilling_sets=*/false),
-              drilling && set == FrictionSet::kSphere ? a : Eigen::Vector4d::Ones())
+              drilling && always ? a : Eigen::Vector4d::Ones())
         << FrictionSetName(set);
-    // the one-argument form is the paper's choice: only sphere
+    // the one-argument form is the paper's choice: only the always-mapped rows
     EXPECT_EQ(ContactMapDiagonal(law), ContactMapDiagonal(law, false)) << FrictionSetName(set);
     // R̄ = 0 or μ = 0: no drilling component, nothing mapped
     EXPECT_EQ(ContactMapDiagonal(MakeLaw(set, 0.3, 0.0), true), Eigen::Vector4d::Ones());

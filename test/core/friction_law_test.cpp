@@ -39,7 +39,8 @@ TEST(FrictionLaws, NamesRoundTripAndUnknownNamesAreNone) {
   }
   EXPECT_FALSE(IsFrictionSet(static_cast<FrictionSet>(kFrictionLaws.size())));
   EXPECT_FALSE(IsFrictionSet(static_cast<FrictionSet>(-1)));
-  EXPECT_EQ(FrictionSetNameList(), "coulomb, cylinder, ellipsoid, sphere, exact");
+  EXPECT_EQ(FrictionSetNameList(),
+            "coulomb, cylinder, ellipsoid, sphere, exact, rolling, rolling_decoupled");
 }
 
 TEST(FrictionLaws, BitMasksAgreeWithTheRows) {
@@ -187,6 +188,38 @@ TEST(FrictionLaws, CoordinatesDecideTheMap) {
           << FrictionSetName(set) << " map_drilling_sets = " << option;
     }
   }
+}
+
+// The rows with a rolling set have their 5-D prox, the others none; at μ_r = 0 (no rolling
+// components) a rolling row is S_F, the sphere row, and its 5-D set restricted to zero rolling
+// torque is S_F again (coupled) or S_F beside a disk (decoupled).
+TEST(FrictionLaws, RollingRowsAreTheSphereWithoutRolling) {
+  std::mt19937_64 rng(kSeed + 2);
+  int rolling_rows = 0;
+  for (FrictionSet set : kAllFrictionSets) {
+    const FrictionLaw& law = LawOf(set);
+    EXPECT_EQ(law.rolling == RollingKind::kNone, law.prox5 == nullptr) << law.name;
+    if (law.rolling == RollingKind::kNone) continue;
+    ++rolling_rows;
+    EXPECT_TRUE(law.drilling) << law.name;
+    EXPECT_EQ(law.coordinates, LawCoordinates::kMapped) << law.name;
+    for (int k = 0; k < kSamples; ++k) {
+      const double radius = std::ldexp(1.0, k % 20 - 10);
+      const Eigen::Vector3d z = RandomPoint(rng, radius, 1.0);
+      ASSERT_TRUE(SameBits(law.prox(z, radius, 1.0, nullptr), ProxBall(z, radius))) << law.name;
+      Vector5d z5;
+      z5 << z, 0.0, 0.0;
+      const Prox5 p5 = law.prox5(z5, radius);
+      const Prox3 p3 = ProxBall(z, radius);
+      // the same radial scaling; the 5-D norm sums in another order (an ulp or two)
+      ASSERT_LE((p5.point.head<3>() - p3.point).norm(), 1e-15 * radius) << law.name;
+      ASSERT_EQ(p5.point.tail<2>(), Eigen::Vector2d::Zero()) << law.name;
+      ASSERT_EQ(p5.region, p3.region) << law.name;
+    }
+  }
+  EXPECT_EQ(rolling_rows, 2);
+  EXPECT_EQ(LawOf(FrictionSet::kRolling).prox5, &ProxRollingBall);
+  EXPECT_EQ(LawOf(FrictionSet::kRollingDecoupled).prox5, &ProxRollingDecoupled);
 }
 
 }  // namespace

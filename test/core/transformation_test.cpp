@@ -303,14 +303,16 @@ TEST(ContensouMap, MapsTheBallOntoTheEllipsoid_56_57) {
   EXPECT_THROW(ContensouMap(std::nan("")), std::invalid_argument);
 }
 
-TEST(ContensouMap, OnlyTheSphereLawWithDrillingIsMapped) {
+// sphere and the rolling rows (their 3-D part is S_F) are the rows with LawCoordinates::kMapped
+TEST(ContensouMap, OnlyTheMappedLawsWithDrillingAreMapped) {
   ContactLaw law;
   law.mu = 0.3;
   law.rbar = 2e-4;
   for (FrictionSet set : kAllFrictionSets) {
     law.friction_set = set;
     const Eigen::Vector4d expected =
-        set == FrictionSet::kSphere ? Eigen::Vector4d(1, 1, 1, 2e-4) : Eigen::Vector4d::Ones();
+        LawOf(set).coordinates == LawCoordinates::kMapped ? Eigen::Vector4d(1, 1, 1, 2e-4)
+                                                          : Eigen::Vector4d::Ones();
     EXPECT_EQ(ContactMapDiagonal(law), expected) << FrictionSetName(set);
   }
   law.friction_set = FrictionSet::kSphere;

@@ -253,6 +253,54 @@ TEST(Conversions, WrenchIsTheContactForceInTheContactFrame) {
   EXPECT_EQ(ToEigen(wrench.wrench.torque), Eigen::Vector3d::Zero());
 }
 
+TEST(Conversions, ARollingContactCarriesItsRollingTorque) {
+  // the lower sphere of the stack with rolling resistance, rolling along x: its ground contact
+  // has the rolling components, the message and the slot's wrench carry Λ_R
+  Scene scene = SphereStack(0).scene();
+  for (Collider& c : scene.colliders) {
+    if (c.body == kWorld) continue;
+    c.law.friction_set = FrictionSet::kRollingDecoupled;
+    c.law.rolling_resistance = 1e-3f;
+  }
+  scene.bodies.resize(1);
+  scene.colliders = {scene.colliders[0], scene.colliders[2]};
+  scene.initial_state.resize(1);
+  scene.initial_state[0].linear_velocity = Eigen::Vector3d(0.1, 0.0, 0.0);
+  scene.initial_state[0].angular_velocity = Eigen::Vector3d(0.0, 0.1 / kStackRadius, 0.0);
+  Simulator rolling(scene, SimulatorOptions{});
+  for (int k = 0; k < 20; ++k) rolling.Step();
+  ASSERT_EQ(rolling.contacts().size(), 1u);
+  const ContactState& c = rolling.contacts()[0];
+  ASSERT_EQ(c.dimension, 6);
+  const double dt = rolling.options().time_step;
+  // the rolling torque opposes the roll about t2 = ŷ and sits on its bound μ_rΛ_N
+  EXPECT_LT(c.rolling_percussion[1], 0.0);
+  EXPECT_NEAR(c.rolling_percussion.norm(), 1e-3f * c.percussion[0], 1e-9 * c.percussion[0]);
+  const FrameNames frames = MakeFrameNames(rolling.scene(), "world");
+  ContactInfoArray msg;
+  FillContacts(rolling, StepStatistics{}, frames, &msg);
+  ASSERT_EQ(msg.contacts.size(), 1u);
+  EXPECT_EQ(msg.contacts[0].rolling_resistance, static_cast<double>(1e-3f));
+  EXPECT_EQ(msg.contacts[0].rolling_percussion[0], c.rolling_percussion[0]);
+  EXPECT_EQ(msg.contacts[0].rolling_percussion[1], c.rolling_percussion[1]);
+  EXPECT_EQ(msg.contacts[0].rolling_torque[1], c.rolling_percussion[1] / dt);
+  geometry_msgs::WrenchStamped wrench;
+  ASSERT_TRUE(FillWrench(rolling, 0, frames, StampOf(rolling.time()), &wrench));
+  // in the contact frame's axes (t1, t2, n): the rolling torque about x and y, drilling about z
+  EXPECT_NEAR(wrench.wrench.torque.x, c.rolling_percussion[0] / dt, 1e-12);
+  EXPECT_NEAR(wrench.wrench.torque.y, c.rolling_percussion[1] / dt, 1e-12);
+  // without rolling resistance the fields are zero
+  const Simulator stack = SphereStack(20);
+  ContactInfoArray plain;
+  FillContacts(stack, StepStatistics{}, MakeFrameNames(stack.scene(), "world"), &plain);
+  ASSERT_EQ(plain.contacts.size(), 2u);
+  for (const ContactInfo& info : plain.contacts) {
+    EXPECT_EQ(info.rolling_resistance, 0.0);
+    EXPECT_EQ(info.rolling_torque[0], 0.0);
+    EXPECT_EQ(info.rolling_torque[1], 0.0);
+  }
+}
+
 TEST(Conversions, WrenchSumsTheContactsOfOneCollider) {
   // the lower sphere of the stack: pushed up by the floor, down by the upper sphere
   const Simulator sim = SphereStack(20);

@@ -151,6 +151,11 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
   ExpectOneErrorLine(
       RunNode({"__name:=bad_parameter_10", urdf, "_max_samples_per_message:=0"}),
       {"~max_samples_per_message", ">= 1 and <= 10000", "got 0"}, "max_samples_per_message");
+  // the rolling-resistance length: negative or beyond 1000 m, or not a number
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_11", urdf, "_rolling_resistance:=-1e-4"}),
+                     {"rolling_resistance", "[0, 1000] [m]"}, "rolling_resistance");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_12", urdf, "_rolling_resistance:=abc"}),
+                     {"~rolling_resistance", "expected a number"}, "rolling_resistance");
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");

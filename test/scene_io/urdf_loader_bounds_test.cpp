@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -140,6 +141,21 @@ TEST(UrdfLoader, FrictionAndContactRadiiOutsideTheirRangesAreRejected) {
                  {"mu1", "[0, 1000]"});
   ExpectContains(LoadError(with(Friction("0.5", "1e4"))), {"coefficient", "[0, 1000]"});
   ExpectContains(LoadError(with(Friction("0.5", "0.5", "1e4"))), {"patch_radius", "[0, 1000] m"});
+  // the rolling-resistance length: negative, beyond 1000 m, NaN or not a number
+  for (const std::string& bad : {"-1e-4", "2e3", "nan", "inf", "abc"}) {
+    ExpectContains(LoadError(with("<nonsmooth_sim reference=\"b\"><rolling_resistance>" + bad +
+                                  "</rolling_resistance></nonsmooth_sim>")),
+                   {"nonsmooth_sim reference=\"b\" > rolling_resistance"});
+    ExpectContains(LoadError(with("<gazebo reference=\"b\"><rolling_friction>" + bad +
+                                  "</rolling_friction></gazebo>")),
+                   {"rolling_friction"});
+  }
+  ExpectContains(LoadError(with("<nonsmooth_sim reference=\"b\"><rolling_resistance>-1"
+                                "</rolling_resistance></nonsmooth_sim>")),
+                 {"-1 is out of range, expected [0, 1000] m"});
+  ExpectContains(LoadError(with("<nonsmooth_sim reference=\"b\"><rolling_resistance>nan"
+                                "</rolling_resistance></nonsmooth_sim>")),
+                 {"\"nan\" is not a finite number"});
   // the patch lies on the shape: R at most its bounding radius (the ball's 0.1 m)
   ExpectContains(LoadError(with(Friction("0.5", "0.5", "0.2"))),
                  {"link \"b\" > collision \"ball\"", "contact patch radius R = 0.2 m",
@@ -175,6 +191,11 @@ TEST(UrdfLoader, OptionsBeyondTheirBoundsAreRejectedNamingTheBound) {
   options = {};
   options.contact_radius = 1e300;
   ExpectContains(message(options), {"contact_radius", "[0, 1000]"});
+  for (double bad : {-1e-4, 2e3, std::numeric_limits<double>::quiet_NaN()}) {
+    options = {};
+    options.rolling_resistance = bad;
+    ExpectContains(message(options), {"rolling_resistance", "[0, 1000] [m]"});
+  }
   options = {};
   options.mu = 1000.0;
   options.gravity = 1000.0;

@@ -172,6 +172,36 @@ TEST(UrdfLoader, GazeboFrictionTagsSetTheContactLaw) {
   EXPECT_EQ(overridden.scene.colliders[0].law.friction_set, FrictionSet::kExact);
 }
 
+TEST(UrdfLoader, RollingResistanceFromItsTagsAndTheOption) {
+  const std::string bullet =
+      "<gazebo reference=\"b\"><collision><surface><friction><bullet>"
+      "<rolling_friction>2e-4</rolling_friction></bullet></friction></surface></collision>"
+      "</gazebo>";
+  const std::string own =
+      "<nonsmooth_sim reference=\"b\"><rolling_resistance>5e-5</rolling_resistance>"
+      "</nonsmooth_sim>";
+  // Bullet's rolling friction of a <gazebo> block (or its direct child), a length
+  EXPECT_EQ(SceneFromUrdf(Robot(kUnitInertial + kBall, bullet)).scene.colliders[0]
+                .law.rolling_resistance,
+            2e-4f);
+  EXPECT_EQ(SceneFromUrdf(Robot(kUnitInertial + kBall,
+                                "<gazebo reference=\"b\"><rolling_friction>3e-4"
+                                "</rolling_friction></gazebo>"))
+                .scene.colliders[0]
+                .law.rolling_resistance,
+            3e-4f);
+  // the <nonsmooth_sim> tag wins over <gazebo>'s, the option over both
+  const std::string both = Robot(kUnitInertial + kBall, bullet + own);
+  EXPECT_EQ(SceneFromUrdf(both).scene.colliders[0].law.rolling_resistance, 5e-5f);
+  UrdfSceneOptions options;
+  options.rolling_resistance = 1e-3;
+  EXPECT_EQ(SceneFromUrdf(both, options).scene.colliders[0].law.rolling_resistance, 1e-3f);
+  // none given: none; the ground stays neutral (the body's decides)
+  const UrdfScene plain = SceneFromUrdf(Robot(kUnitInertial + kBall));
+  EXPECT_EQ(plain.scene.colliders[0].law.rolling_resistance, 0.0f);
+  EXPECT_EQ(plain.scene.colliders.back().law.rolling_resistance, GroundLaw().rolling_resistance);
+}
+
 TEST(UrdfLoader, WithoutTagsSdfDefaultsAndTheOptionsFrictionSetApply) {
   UrdfSceneOptions options;
   options.friction_set = FrictionSet::kEllipsoid;

@@ -110,7 +110,8 @@ TEST(UrdfLoader, DegenerateUrdfShapesAreErrors) {
 TEST(UrdfLoader, ExtensionTyposAreErrorsListingWhatIsAllowed) {
   ExpectContains(LoadError(Robot(kShellLink, Extension("<restitutoin>0.1</restitutoin>"))),
                  {"nonsmooth_sim reference=\"b\" > restitutoin", "unknown element <restitutoin>",
-                  "allowed in <nonsmooth_sim>: <restitution>, <friction_set>, <collision"});
+                  "allowed in <nonsmooth_sim>: <restitution>, <friction_set>, "
+                  "<rolling_resistance>, <collision"});
   ExpectContains(LoadError(Robot(kShellLink, Extension("<collision name=\"shell\">"
                                                        "<ellipsoid semiaxes=\"1 1 1\"/>"
                                                        "</collision>"))),

@@ -9,6 +9,10 @@
 //   ellipsoid  E_F (55)                yes       ProxEllipsoid         original     (1,1,R̄) Λ
 //   sphere     S_F = A⁻¹E_F (57)-(59)  yes       ProxBall              mapped (56)  I        Λ
 //   exact      B_F (51)-(53)           yes       ProxCoulombContensou  by option    -        Λ, rim
+//   rolling    E_R, 5-D ellipsoid      yes       ProxBall; 5-D:        mapped (56)  I        Λ
+//              (prox_rolling.h)                  ProxRollingBall
+//   rolling_   E_F × rolling disk      yes       ProxBall; 5-D:        mapped (56)  I        Λ
+//   decoupled  (prox_rolling.h)                  ProxRollingDecoupled
 //
 //  - drilling: whether a contact with μ > 0 and R̄ > 0 has the drilling component Λ_τ (4
 //    components); without it a contact is 3-component and every law is the coulomb disk there.
@@ -21,6 +25,10 @@
 //    diagonal map: such contacts can be solved directly (ball_contact_solve.h); R̄ is set_rbar.
 //  - warm (start): what a contact carries from one step to the next besides its percussion Λ: B_F's
 //    prox also its last foot point, the rim hint (ProxCoulombContensou's rim_hint).
+//  - rolling: the two rows with rolling resistance (a rolling torque about t1, t2 bounded by
+//    μ_rΛ_N). Their 5-D set (T1, T2, τ, R1, R2) applies where a contact has μ_r > 0 (prox5, in the
+//    coordinates A = diag(1, 1, 1, R̄, μ_r/μ, μ_r/μ)); without rolling components (μ_r = 0) the
+//    row is its 3-D part, S_F, and the contact is iterated exactly as `sphere`'s.
 //
 // A new law: its prox in a file pair of its own (declared in a header this file includes), one
 // enum value and one row here, and a test of its prox (docs/building.md).
@@ -35,6 +43,7 @@
 #include <string_view>
 
 #include "nonsmooth_sim/core/force_sets.h"
+#include "nonsmooth_sim/core/prox_rolling.h"
 
 namespace nonsmooth_sim {
 
@@ -47,11 +56,14 @@ enum class FrictionSet {
   kEllipsoid,  ///< "ellipsoid": E_F (55), prox on the ellipsoid itself (37).
   kSphere,     ///< "sphere": E_F solved through the map A (56) onto the ball S_F (58), (40)-(47).
   kExact,      ///< "exact": the Coulomb-Contensou set B_F (51)-(53).
+  kRolling,    ///< "rolling": E_F and the rolling torque in one 5-D ellipsoid, mapped to the ball.
+  kRollingDecoupled,  ///< "rolling_decoupled": E_F mapped to S_F, the rolling torque on its disk.
 };
 
-inline constexpr std::array<FrictionSet, 5> kAllFrictionSets = {
-    FrictionSet::kCoulomb, FrictionSet::kCylinder, FrictionSet::kEllipsoid, FrictionSet::kSphere,
-    FrictionSet::kExact};
+inline constexpr std::array<FrictionSet, 7> kAllFrictionSets = {
+    FrictionSet::kCoulomb, FrictionSet::kCylinder,          FrictionSet::kEllipsoid,
+    FrictionSet::kSphere,  FrictionSet::kExact,             FrictionSet::kRolling,
+    FrictionSet::kRollingDecoupled};
 
 /// The law every contact without a drilling component is iterated with.
 inline constexpr FrictionSet kPlanarFrictionSet = FrictionSet::kCoulomb;
@@ -62,7 +74,12 @@ struct ContactLaw {
   double rbar = 0.0;         ///< average friction radius R̄ = 3πR/16 (50) [m], ≥ 0; 0 = no drilling
   double restitution = 0.0;  ///< Newton's ε (14), in [0, 1]
   FrictionSet friction_set = FrictionSet::kSphere;
+  /// μ_r, the rolling-resistance length [m], finite, ≥ 0; 0 = no rolling components. A float in
+  /// the padding after friction_set (relative rounding ≤ 6e-8): as a double it made the struct
+  /// 40 bytes, and its copies cost the step 1.2 % more instructions.
+  float rolling_resistance = 0.0f;
 };
+static_assert(sizeof(ContactLaw) == 32, "ContactLaw: keep μ_r in the padding");
 
 /// The coordinates a law's set is iterated in (the table above).
 enum class LawCoordinates {
@@ -90,6 +107,16 @@ enum class WarmStartKind {
 using FrictionProx = Prox3 (*)(const Eigen::Vector3d& z, double radius, double set_rbar,
                                double* hint);
 
+/// How a law bounds the rolling torque (Λ_R1, Λ_R2) where a contact has μ_r > 0.
+enum class RollingKind {
+  kNone,       ///< no rolling components: μ_r is ignored
+  kCoupled,    ///< one 5-D ellipsoid with sliding and drilling (ProxRollingBall when mapped)
+  kDecoupled,  ///< its own disk ||Λ_R|| ≤ μ_rΛ_N beside E_F (ProxRollingDecoupled when mapped)
+};
+
+/// prox onto the 5-D friction set (T1, T2, τ, R1, R2) in the mapped coordinates, radius = μΛ_N.
+using FrictionProx5 = Prox5 (*)(const Vector5d& z, double radius);
+
 /// One row of the laws table.
 struct FrictionLaw {
   FrictionSet set;
@@ -100,6 +127,8 @@ struct FrictionLaw {
   LawCoordinates coordinates;
   BallMetric ball_metric;
   WarmStartKind warm_start;
+  RollingKind rolling;
+  FrictionProx5 prox5;  ///< the 5-D set's prox where rolling ≠ kNone, else null
 };
 
 namespace law_prox {
@@ -132,19 +161,27 @@ namespace law_prox {
 inline constexpr std::array<FrictionLaw, kAllFrictionSets.size()> kFrictionLaws = {{
     {FrictionSet::kCoulomb, "coulomb", "planar Coulomb disk, no drilling friction",
      /*drilling=*/false, &law_prox::PlanarDisk, LawCoordinates::kOriginal, BallMetric::kUnit,
-     WarmStartKind::kPercussion},
+     WarmStartKind::kPercussion, RollingKind::kNone, nullptr},
     {FrictionSet::kCylinder, "cylinder", "cylinder C_F (54): drilling decoupled from sliding",
      /*drilling=*/true, &law_prox::Cylinder, LawCoordinates::kMappedByOption, BallMetric::kNone,
-     WarmStartKind::kPercussion},
+     WarmStartKind::kPercussion, RollingKind::kNone, nullptr},
     {FrictionSet::kEllipsoid, "ellipsoid", "ellipsoid E_F (55), iterated on itself (37)",
      /*drilling=*/true, &law_prox::Ellipsoid, LawCoordinates::kOriginal,
-     BallMetric::kDrillingRadius, WarmStartKind::kPercussion},
+     BallMetric::kDrillingRadius, WarmStartKind::kPercussion, RollingKind::kNone, nullptr},
     {FrictionSet::kSphere, "sphere", "E_F iterated as the ball S_F through the map (56)",
      /*drilling=*/true, &law_prox::Ball, LawCoordinates::kMapped, BallMetric::kUnit,
-     WarmStartKind::kPercussion},
+     WarmStartKind::kPercussion, RollingKind::kNone, nullptr},
     {FrictionSet::kExact, "exact", "Coulomb-Contensou set B_F (51)-(53)",
      /*drilling=*/true, &law_prox::CoulombContensou, LawCoordinates::kMappedByOption,
-     BallMetric::kNone, WarmStartKind::kPercussionAndRimHint},
+     BallMetric::kNone, WarmStartKind::kPercussionAndRimHint, RollingKind::kNone, nullptr},
+    {FrictionSet::kRolling, "rolling",
+     "E_F and rolling torque <= mu_r*lambda_N in one 5-D ellipsoid, mapped to the ball",
+     /*drilling=*/true, &law_prox::Ball, LawCoordinates::kMapped, BallMetric::kUnit,
+     WarmStartKind::kPercussion, RollingKind::kCoupled, &ProxRollingBall},
+    {FrictionSet::kRollingDecoupled, "rolling_decoupled",
+     "S_F and, on its own disk, rolling torque <= mu_r*lambda_N",
+     /*drilling=*/true, &law_prox::Ball, LawCoordinates::kMapped, BallMetric::kUnit,
+     WarmStartKind::kPercussion, RollingKind::kDecoupled, &ProxRollingDecoupled},
 }};
 
 /// Whether the table's rows follow the enum (row i is the law of value i).
@@ -169,11 +206,11 @@ constexpr const FrictionLaw& LawOf(FrictionSet set) {
   return kFrictionLaws[static_cast<std::size_t>(set)];
 }
 
-/// "coulomb", "cylinder", "ellipsoid", "sphere" or "exact". Precondition: IsFrictionSet(set).
+/// The row's name, e.g. "sphere". Precondition: IsFrictionSet(set).
 constexpr std::string_view FrictionSetName(FrictionSet set) { return LawOf(set).name; }
 /// Inverse of FrictionSetName(); std::nullopt for an unknown name.
 std::optional<FrictionSet> FrictionSetFromName(std::string_view name);
-/// "coulomb, cylinder, ellipsoid, sphere, exact" (for error messages).
+/// The names, comma-separated (for error messages).
 std::string FrictionSetNameList();
 
 /// Bit i set where row i's field equals kValue.
@@ -203,6 +240,19 @@ inline int ContactDimension(const ContactLaw& law) {
   if (!(law.mu > 0.0)) return 1;
   if (LawIs<&FrictionLaw::drilling, false>(law.friction_set) || !(law.rbar > 0.0)) return 3;
   return 4;
+}
+
+/// Whether a contact with this law has the rolling components (Λ_R1, Λ_R2): μ > 0, R̄ > 0,
+/// μ_r > 0 and a row with rolling (RollingKind ≠ kNone). Such a contact has 6 components
+/// (N, T1, T2, τ, R1, R2), solved by RollingContactSolver (rolling_contact_solver.h).
+inline bool HasRolling(const ContactLaw& law) {
+  return law.rolling_resistance > 0.0f && ContactDimension(law) == 4 &&
+         !LawIs<&FrictionLaw::rolling, RollingKind::kNone>(law.friction_set);
+}
+
+/// ContactDimension, or 6 where the contact has rolling components (HasRolling).
+inline int ContactDimensionWithRolling(const ContactLaw& law) {
+  return HasRolling(law) ? 6 : ContactDimension(law);
 }
 
 namespace law_detail {

@@ -4,11 +4,12 @@
 // URDF by the scene loader (scene_io/urdf_scene.h).
 //
 // Contact laws of a pair of colliders (CombineLaws): μ = min(μ_a, μ_b) (Gazebo/ODE), R̄ =
-// max(R̄_a, R̄_b) (the larger patch: the ground has none), ε = max(ε_a, ε_b) (Gazebo), and the
-// friction set of the collider that comes first in Scene::colliders among those on a body (the
-// ground has no say). The ground's default law (GroundLaw) is neutral under these rules: μ = the
-// largest double, R̄ = 0, ε = 0, so that a body's own law decides (Gazebo's ground_plane model
-// has μ = 100, which would cap a body's μ).
+// max(R̄_a, R̄_b) (the larger patch: the ground has none), ε = max(ε_a, ε_b) (Gazebo), μ_r =
+// min(μ_r,a, μ_r,b) (as μ), and the friction set of the collider that comes first in
+// Scene::colliders among those on a body (the ground has no say). The ground's default law
+// (GroundLaw) is neutral under these rules: μ = the largest double, μ_r the largest float, R̄ = 0,
+// ε = 0, so that a body's own law decides (Gazebo's ground_plane model has μ = 100, which would
+// cap a body's μ).
 #ifndef NONSMOOTH_SIM_CORE_SCENE_H_
 #define NONSMOOTH_SIM_CORE_SCENE_H_
 
@@ -65,7 +66,7 @@ struct Scene {
   CollisionTable collision_table = CollisionTable::Defaults();
 };
 
-/// μ = largest double, R̄ = 0, ε = 0: a body's own law decides (CombineLaws).
+/// μ = largest double, μ_r = largest float, R̄ = 0, ε = 0: a body's own law decides (CombineLaws).
 ContactLaw GroundLaw();
 /// The ground plane z = 0 (normal +z), named "ground".
 Collider GroundPlane(const ContactLaw& law = GroundLaw());
@@ -95,7 +96,7 @@ void RemoveFromScene(const std::vector<char>& remove_body, const std::vector<cha
 void ValidateScene(const Scene& scene);
 /// Throws std::invalid_argument unless every entry is finite and the quaternions are non-zero.
 void ValidateState(const Scene& scene, const std::vector<BodyState>& state);
-/// Throws std::invalid_argument naming `where` (μ, R̄ finite ≥ 0, ε in [0, 1], a known set).
+/// Throws std::invalid_argument naming `where` (μ, R̄, μ_r finite ≥ 0, ε in [0, 1], a known set).
 void ValidateLaw(const std::string& where, const ContactLaw& law);
 
 /// Mechanical energy E = Σ ½ m|v_S|² + ½ ωᵀΘω - m g·r_S [J].

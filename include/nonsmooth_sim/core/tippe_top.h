@@ -20,6 +20,7 @@ struct TippeTopParameters {
   double mu = 0.3;                 ///< both contacts
   double contact_radius = 5e-4;    ///< R [m]; R̄ = 3πR/16 (50)
   double restitution = 0.0;        ///< ε
+  double rolling_resistance = 0.0; ///< μ_r [m], both contacts (0: no rolling components)
   FrictionSet friction_set = FrictionSet::kSphere;
 };
 

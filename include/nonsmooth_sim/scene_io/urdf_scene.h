@@ -42,8 +42,12 @@
 //    paper's R̄). Restitution ε of (14) and the friction set:
 //      <nonsmooth_sim reference="link"><restitution>ε</restitution>
 //        <friction_set>exact</friction_set></nonsmooth_sim>
-//    Options replace μ (and μ_τ) and R of every link; options.friction_set is the set of the links
-//    without <friction_set>.
+//    The rolling resistance μ_r [m] (rolling_contact_solver.h; default 0, none):
+//      <nonsmooth_sim reference="link"><rolling_resistance>μ_r</rolling_resistance></nonsmooth_sim>
+//    or Bullet's <gazebo reference="link"><collision><surface><friction><bullet>
+//      <rolling_friction>μ_r</rolling_friction></bullet>... (or <rolling_friction> in <gazebo>);
+//    the <nonsmooth_sim> value wins. Options replace μ (and μ_τ), R and μ_r of every link;
+//    options.friction_set is the set of the links without <friction_set>.
 //
 // Errors: a malformed or inconsistent URDF throws UrdfError with one line naming the element and
 // the reason (not XML, no inertial on a body with collisions, mass ≤ 0, inertia not positive
@@ -69,7 +73,8 @@
 //    length in [0, kMaxLength]);
 //  - μ, μ₂ and μ_τ in [0, kMaxFriction]; the patch radius R (or the option) in [0, kMaxLength] and
 //    at most the bounding radius of each shape of a free body it applies to (the contact patch lies
-//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; gravity in [0, kMaxGravity];
+//    on the shape); R̄ = 3πR/16·μ_τ/μ ≤ kMaxLength; ε in [0, 1]; μ_r in [0, kMaxLength];
+//    gravity in [0, kMaxGravity];
 //  - sizes (bounded_input.h): the text at most options.max_bytes, names at most kMaxNameLength
 //    bytes, at most kMaxCollisionsPerModel <collision> elements; a file must be a regular file.
 #ifndef NONSMOOTH_SIM_SCENE_IO_URDF_SCENE_H_
@@ -123,6 +128,8 @@ struct UrdfSceneOptions {
   /// replaces torsional/patch_radius R [m], in [0, kMaxLength] and at most the bounding radius of
   /// every collision shape of a free body (checked by the loader against the scene)
   std::optional<double> contact_radius;
+  /// replaces the rolling resistance μ_r of every link [m], in [0, kMaxLength]
+  std::optional<double> rolling_resistance;
   bool ground = true;  ///< append the core's GroundPlane() (z = 0, "ground") as the last collider
   /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
   /// in [1, kMaxInputBytesOption]

@@ -22,6 +22,11 @@ struct LinkSurface {
   double torsional_coefficient = 1.0;  ///< torsional/coefficient μ_τ (SDF default 1), same
   double patch_radius = 0.0;           ///< torsional/patch_radius R [m] (default 0), ≤ kMaxLength
   double restitution = 0.0;            ///< ε of (14), in [0, 1]
+  /// <nonsmooth_sim><rolling_resistance> μ_r [m], in [0, kMaxLength]; unset: rolling_friction
+  std::optional<double> rolling_resistance;
+  /// <gazebo>'s rolling_friction (SDF's bullet/rolling_friction, or a direct child) [m], in
+  /// [0, kMaxLength] (default 0: no rolling resistance)
+  double rolling_friction = 0.0;
   /// <nonsmooth_sim><friction_set>; unset: the loader option UrdfSceneOptions::friction_set
   std::optional<FrictionSet> friction_set;
 };

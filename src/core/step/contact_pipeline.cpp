@@ -19,10 +19,31 @@ void ContactPipeline::Resize(const Model& model) {
   merged_pairs_.reserve(2 * model.scene.colliders.size());
 }
 
+namespace {
+
+// A contact with rolling components (HasRolling): dimension 6, the rolling rows of W at q_M.
+// Out of line: a step without rolling does not carry its code.
+[[gnu::cold, gnu::noinline]] void AddRollingRows(const Model& model, ClosedContact* contact,
+                                                 StepData* data) {
+  ContactState& r = contact->report;
+  r.dimension = 6;
+  data->any_rolling = true;
+  for (int s = 0; s < 2; ++s) {
+    const int body = contact->jacobian.side[s].body;
+    if (body < 0) continue;
+    const std::size_t b = static_cast<std::size_t>(body);
+    SetRollingRows(ContactRollingRows(r.frame, data->body[b].rotation_mid), model.inertia[b],
+                   &contact->rolling.side[s]);
+  }
+}
+
+}  // namespace
+
 void ContactPipeline::FindContacts(const Model& model, const std::vector<BodyState>& state,
                                    StepData* data, StepStatistics* stats) {
   const std::vector<Collider>& colliders = model.scene.colliders;
   data->closed_count = 0;
+  data->any_rolling = false;
   pairs_.clear();
   // broad phase: every body collider against every static plane, the rest by sweep and prune;
   // kMoreau2 pads the bounding spheres by the persistent contacts' margin (AddPairContacts)
@@ -159,6 +180,7 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
     if (g.face_point) r.law.rbar = 0.0;
     r.dimension = ContactDimension(r.law);
     r.percussion.setZero();
+    r.rolling_percussion.setZero();
     // W at q_M over B (+) and A (-)
     c.jacobian.linear = ContactLinearRows(r.frame);
     c.gamma_begin.setZero();
@@ -179,6 +201,7 @@ void ContactPipeline::AddPairContacts(const Model& model, const std::vector<Body
       c.gamma_begin +=
           SideVelocity(c.jacobian, side, begin.linear_velocity, begin.angular_velocity);
     }
+    if (r.law.rolling_resistance > 0.0f && HasRolling(r.law)) AddRollingRows(model, &c, data);
   }
   // the pair's own memory: closed in this step
   if (any_closed) {

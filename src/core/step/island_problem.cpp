@@ -21,6 +21,18 @@ bool CarriesRimHint(const ContactLaw& law) {
 
 }  // namespace
 
+bool IslandProblem::HasRollingContact(const Islands& islands, std::size_t index,
+                                      const StepData& data) {
+  const Island& island = islands.islands()[index];
+  for (int k = 0; k < island.contact_count; ++k) {
+    if (data.closed[static_cast<std::size_t>(islands.contact(island, k))].report.dimension == 6) {
+      return true;
+    }
+  }
+  return false;
+}
+
+template <bool kRolling>
 void IslandProblem::ApplyImpulses(const Islands& islands, std::size_t index,
                                   StepData* data) const {
   // (18) the contact part M⁻¹ Σ W_i Λ_i, per body
@@ -31,8 +43,14 @@ void IslandProblem::ApplyImpulses(const Islands& islands, std::size_t index,
     w.angular_contact.setZero();
   }
   for (int k = 0; k < island.contact_count; ++k) {
-    AddContactImpulse(data->closed[static_cast<std::size_t>(islands.contact(island, k))],
-                      lambda_[static_cast<std::size_t>(k)], &data->body);
+    const ClosedContact& c = data->closed[static_cast<std::size_t>(islands.contact(island, k))];
+    if constexpr (kRolling) {
+      const Vector6d& lambda = rolling_lambda_[static_cast<std::size_t>(k)];
+      AddContactImpulse(c, lambda.head<4>(), &data->body);
+      if (c.report.dimension == 6) AddRollingImpulse(c, lambda.tail<2>(), &data->body);
+    } else {
+      AddContactImpulse(c, lambda_[static_cast<std::size_t>(k)], &data->body);
+    }
   }
 }
 
@@ -110,6 +128,7 @@ bool IslandProblem::SolveLoneContact(const Model& model, const SimulatorOptions&
   return true;
 }
 
+template <bool kRolling>
 bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& options,
                                 const std::vector<BodyState>& state, const Islands& islands,
                                 std::size_t index, StepData* data, StepStatistics* stats) {
@@ -122,9 +141,26 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   auto contact = [data, &islands, &island](int k) -> ClosedContact& {
     return data->closed[static_cast<std::size_t>(islands.contact(island, k))];
   };
-  problem_.Resize(m);
-  if (lambda_.size() < static_cast<std::size_t>(m)) {
-    lambda_.resize(static_cast<std::size_t>(m));
+  // the problem and percussions in 4-blocks, or in 6-blocks for an island with rolling
+  auto& problem = [this]() -> auto& {
+    if constexpr (kRolling) {
+      return rolling_problem_;
+    } else {
+      return problem_;
+    }
+  }();
+  auto& lambda = [this]() -> auto& {
+    if constexpr (kRolling) {
+      return rolling_lambda_;
+    } else {
+      return lambda_;
+    }
+  }();
+  problem.Resize(m);
+  if (lambda.size() < static_cast<std::size_t>(m)) {
+    lambda.resize(static_cast<std::size_t>(m));
+  }
+  if (rim_hints_.size() < static_cast<std::size_t>(m)) {
     rim_hints_.resize(static_cast<std::size_t>(m));
   }
   // extrapolated starts (simulator.h) in an island of one contact or of contacts that all slid
@@ -142,9 +178,17 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
     // kMoreau2: friction against the midpoint velocity while a persistent contact slides
     c.friction_midpoint = second_order && c.report.dimension > 1 &&
                           c.memory->closed_step == step - 1 && c.memory->sliding;
-    problem_.laws[static_cast<std::size_t>(k)] = c.report.law;
+    problem.laws[static_cast<std::size_t>(k)] = c.report.law;
     any_rim_hint = any_rim_hint || CarriesRimHint(c.report.law);
-    lambda_[static_cast<std::size_t>(k)] = WarmStart(*c.memory, step, extrapolating);
+    if constexpr (kRolling) {
+      Vector6d& start = lambda[static_cast<std::size_t>(k)];
+      start.head<4>() = WarmStart(*c.memory, step, extrapolating);
+      start.tail<2>() = c.report.dimension == 6 && c.memory->closed_step == step - 1
+                            ? c.memory->rolling_percussion
+                            : Eigen::Vector2d::Zero();
+    } else {
+      lambda[static_cast<std::size_t>(k)] = WarmStart(*c.memory, step, extrapolating);
+    }
     rim_hints_[static_cast<std::size_t>(k)] = c.memory->closed_step == step - 1
                                                   ? c.memory->rim_hint
                                                   : std::numeric_limits<double>::quiet_NaN();
@@ -154,9 +198,13 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   for (int i = 0; i < m; ++i) {
     const ClosedContact& a = contact(i);
     for (int j = i; j < m; ++j) {
-      Eigen::Matrix4d& block = problem_.G[static_cast<std::size_t>(i * m + j)];
-      block = DelassusBlock(model.inertia, a, contact(j));
-      if (j != i) problem_.G[static_cast<std::size_t>(j * m + i)] = block.transpose();
+      auto& block = problem.G[static_cast<std::size_t>(i * m + j)];
+      if constexpr (kRolling) {
+        block = RollingDelassusBlock(model.inertia, a, contact(j));
+      } else {
+        block = DelassusBlock(model.inertia, a, contact(j));
+      }
+      if (j != i) problem.G[static_cast<std::size_t>(j * m + i)] = block.transpose();
       // a body far away can overflow G: not solved
       if (!AllFinite(block)) return false;
     }
@@ -166,25 +214,46 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
   const double pass_tolerance = std::max(options.solver.tolerance_rel, kGyroscopicRoundOff);
   int total_iterations = 0;
   int passes = 0;
-  const auto free_velocity = [&](int k) {
+  const auto free_velocity4 = [&](int k) {
     return second_order ? SecondOrderContactVelocity(data->body, contact(k), dt,
                                                      data->previous_time_step, step)
                         : FreeContactVelocity(data->body, contact(k));
+  };
+  const auto free_velocity = [&](int k) {
+    if constexpr (kRolling) {
+      Vector6d velocity;
+      velocity.head<4>() = free_velocity4(k);
+      velocity.tail<2>() = contact(k).report.dimension == 6
+                               ? RollingFreeVelocity(data->body, contact(k),
+                                                     second_order ? &state : nullptr)
+                               : Eigen::Vector2d::Zero();
+      return velocity;
+    } else {
+      return free_velocity4(k);
+    }
+  };
+  // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
+  // options were validated when set
+  const auto solve = [&]() {
+    if constexpr (kRolling) {
+      rolling_solver_.SolvePrevalidated(rolling_problem_, options.solver, &rolling_lambda_,
+                                        &island_stats_, any_rim_hint ? &rim_hints_ : nullptr);
+    } else {
+      solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
+                                any_rim_hint ? &rim_hints_ : nullptr);
+    }
   };
   for (int pass = 0; pass < kMaxGyroscopicPasses; ++pass) {
     // (16) c_i, with this pass's gyroscopic impulse
     bool finite = true;
     for (int k = 0; k < m; ++k) {
-      Eigen::Vector4d& ci = problem_.c[static_cast<std::size_t>(k)];
+      auto& ci = problem.c[static_cast<std::size_t>(k)];
       ci = free_velocity(k);
       finite = finite && AllFinite(ci);
     }
     // a diverged state (huge ω) can overflow c: not solved
     if (!finite) return false;
-    // (17); the problem is valid by construction (G_ii > 0: every contact moves a body), the
-    // options were validated when set
-    solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
-                              any_rim_hint ? &rim_hints_ : nullptr);
+    solve();
     total_iterations += island_stats_.iterations;
     if (second_order) {
       // kMoreau2: a contact that slid and now sticks has its law on the end velocity instead
@@ -198,14 +267,13 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
         }
       }
       if (again) {
-        for (int k = 0; k < m; ++k) problem_.c[static_cast<std::size_t>(k)] = free_velocity(k);
-        solver_.SolvePrevalidated(problem_, options.solver, &lambda_, &island_stats_,
-                                  any_rim_hint ? &rim_hints_ : nullptr);
+        for (int k = 0; k < m; ++k) problem.c[static_cast<std::size_t>(k)] = free_velocity(k);
+        solve();
         total_iterations += island_stats_.iterations;
       }
     }
     passes = pass + 1;
-    ApplyImpulses(islands, index, data);
+    ApplyImpulses<kRolling>(islands, index, data);
     if (!implicit) {
       for (int k = body_begin; k < body_end; ++k) {
         const std::size_t b = static_cast<std::size_t>(islands.body(k));
@@ -253,12 +321,30 @@ bool IslandProblem::SolveBlocks(const Model& model, const SimulatorOptions& opti
     stats->solver.friction_projected[i] =
         island_stats_.friction_projected[static_cast<std::size_t>(k)];
     stats->solver.normal_projected[i] = island_stats_.normal_projected[static_cast<std::size_t>(k)];
-    RememberSolve(&c, lambda_[static_cast<std::size_t>(k)],
-                  island_stats_.friction_projected[static_cast<std::size_t>(k)], m == 1,
-                  rim_hints_[static_cast<std::size_t>(k)], step);
+    if constexpr (kRolling) {
+      const Vector6d& percussion = lambda[static_cast<std::size_t>(k)];
+      RememberSolve(&c, percussion.head<4>(),
+                    island_stats_.friction_projected[static_cast<std::size_t>(k)], m == 1,
+                    rim_hints_[static_cast<std::size_t>(k)], step);
+      if (c.report.dimension == 6) {
+        c.report.rolling_percussion = percussion.tail<2>();
+        c.memory->rolling_percussion = percussion.tail<2>();
+      }
+    } else {
+      RememberSolve(&c, lambda[static_cast<std::size_t>(k)],
+                    island_stats_.friction_projected[static_cast<std::size_t>(k)], m == 1,
+                    rim_hints_[static_cast<std::size_t>(k)], step);
+    }
   }
   return true;
 }
+
+template bool IslandProblem::SolveBlocks<false>(const Model&, const SimulatorOptions&,
+                                                const std::vector<BodyState>&, const Islands&,
+                                                std::size_t, StepData*, StepStatistics*);
+template bool IslandProblem::SolveBlocks<true>(const Model&, const SimulatorOptions&,
+                                               const std::vector<BodyState>&, const Islands&,
+                                               std::size_t, StepData*, StepStatistics*);
 
 void SolveFreeBodiesImplicit(const Model& model, const SimulatorOptions& options,
                              const std::vector<BodyState>& state, const Islands& islands,

@@ -15,6 +15,9 @@
 //   γ = Σ_sides sign (L v_S + J K_ω),   W Λ on a side = sign (LᵀΛ, JᵀΛ),
 //   G_ij = W_iᵀ M⁻¹ W_j = Σ over sides s of i and t of j on the same body
 //          sign_s sign_t (L_i L_jᵀ / m + J_s Θ⁻¹ J_tᵀ)                                     (16)
+// Rolling resistance adds two rows per side (ContactRollingRows): the rolling percussion
+// Λ_R = (Λ_R1, Λ_R2) is the torque Λ_R1 t1 + Λ_R2 t2 on B and its opposite on A, so its rows are
+// w_R = ± [0; Aᵀt1], ± [0; Aᵀt2] and γ_R the angular velocity of B minus that of A about t1, t2.
 // With the ground as A this is the sphere–ground kinematics of the Tippe-Top: n = ẑ, t1 = x̂,
 // t2 = ŷ, one side (B) with sign +1.
 #ifndef NONSMOOTH_SIM_CORE_CONTACT_CONTACT_JACOBIAN_H_
@@ -64,6 +67,38 @@ inline Eigen::Matrix<double, 4, 3> ContactAngularRows(const ContactFrame& frame,
   return angular;
 }
 
+/// The rolling rows of one side, in K: Aᵀt1, Aᵀt2 (a torque about each tangent); sign times
+/// these rows applied to K_ω is the side's part of γ_R.
+inline Eigen::Matrix<double, 2, 3> ContactRollingRows(const ContactFrame& frame,
+                                                      const Eigen::Matrix3d& rotation) {
+  Eigen::Matrix<double, 2, 3> rows;
+  rows.row(0) = rotation.transpose() * frame.tangent1;
+  rows.row(1) = rotation.transpose() * frame.tangent2;
+  return rows;
+}
+
+/// The rolling rows of a contact's two sides (ContactRollingRows, in K; side[k] as
+/// ContactJacobian::side[k]) and J_R R with them (Θ⁻¹ = R Rᵀ): set only where the contact has
+/// rolling components.
+struct RollingSide {
+  Eigen::Matrix<double, 2, 3> rows = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix<double, 2, 3> metric = Eigen::Matrix<double, 2, 3>::Zero();
+};
+struct RollingJacobian {
+  RollingSide side[2];
+};
+
+/// Sets the rolling rows of a side and J_R R with them.
+inline void SetRollingRows(const Eigen::Matrix<double, 2, 3>& rows, const BodyInertia& body,
+                           RollingSide* side) {
+  side->rows = rows;
+  if (body.principal) {
+    side->metric.noalias() = rows * body.inverse_inertia_factor.diagonal().asDiagonal();
+  } else {
+    side->metric.noalias() = rows * body.inverse_inertia_factor;
+  }
+}
+
 /// Sets J of a side and J R with it (the side's body's inertia).
 inline void SetAngularRows(const Eigen::Matrix<double, 4, 3>& angular, const BodyInertia& body,
                            ContactSide* side) {
@@ -103,6 +138,19 @@ inline Eigen::Matrix4d SideDelassusBlock(const BodyInertia& body, const ContactJ
       body.inverse_mass * (i.linear.topRows<3>() * j.linear.topRows<3>().transpose());
   if (s.sign * t.sign < 0.0) block = -block;
   return block;
+}
+
+/// The rolling rows' part of G_ij (16) for sides s (of contact i) and t (of contact j) on one
+/// body, beside SideDelassusBlock's 4 × 4 (rows and columns N, T1, T2, τ): the 4 × 2 block
+/// sign_s sign_t (J_s R)(J_R,t R)ᵀ of (i's 4 rows, j's rolling rows), the 2 × 4 block of (i's
+/// rolling rows, j's 4 rows) and the 2 × 2 block (J_R,s R)(J_R,t R)ᵀ; the rolling rows have no
+/// linear part. A contact without rolling rows passes zero rows (its blocks come out zero).
+inline void RollingDelassusParts(const ContactSide& s, const RollingSide& rs, const ContactSide& t,
+                                 const RollingSide& rt, Eigen::Matrix<double, 6, 6>* block) {
+  const double sign = s.sign * t.sign;
+  block->topRightCorner<4, 2>().noalias() += sign * (s.angular_metric * rt.metric.transpose());
+  block->bottomLeftCorner<2, 4>().noalias() += sign * (rs.metric * t.angular_metric.transpose());
+  block->bottomRightCorner<2, 2>().noalias() += sign * (rs.metric * rt.metric.transpose());
 }
 
 /// The same for one side with itself, the part of G_ii its body gives: L Lᵀ = diag(1, 1, 1, 0)

@@ -19,6 +19,8 @@ struct ContactMemory {
   Eigen::Vector4d percussion_before = Eigen::Vector4d::Zero();
   Eigen::Vector4d percussion_before2 = Eigen::Vector4d::Zero();
   double rim_hint = 0.0;     ///< the warm start of B_F's exact prox (ContactWork::rim_hint)
+  /// Λ_R of its last solve where it had rolling components [N m s] (its warm start)
+  Eigen::Vector2d rolling_percussion = Eigen::Vector2d::Zero();
   long closed_step = -2;     ///< the step it was last closed in
   long closed_before = -3;   ///< the step before that in which it was closed
   long closed_before2 = -4;  ///< and the one before that
@@ -37,12 +39,14 @@ struct ContactMemory {
     percussion *= ratio;
     percussion_before *= ratio;
     percussion_before2 *= ratio;
+    rolling_percussion *= ratio;
   }
   /// A warm start that no longer fits (another Δt, law or friction set): start from zero.
   void DropWarmStart() {
     percussion.setZero();
     percussion_before.setZero();
     percussion_before2.setZero();
+    rolling_percussion.setZero();
     quadratic_served = false;
   }
 };

@@ -18,6 +18,7 @@
 #include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/contact_solver.h"
 #include "nonsmooth_sim/core/model.h"
+#include "nonsmooth_sim/core/rolling_contact_solver.h"
 #include "nonsmooth_sim/core/simulator_options.h"
 #include "nonsmooth_sim/core/step/islands.h"
 #include "nonsmooth_sim/core/step/step_data.h"
@@ -63,6 +64,62 @@ inline Eigen::Vector4d QuadraticStart(const ContactMemory& m) {
     }
   }
   return block;
+}
+
+/// (16) G_ij in 6-blocks for an island with rolling contacts (rolling_contact_solver.h):
+/// DelassusBlock's 4 × 4 and the rolling rows' parts (RollingDelassusParts) of the contacts with
+/// dimension 6; zero where neither has rolling rows.
+inline Matrix6d RollingDelassusBlock(const std::vector<BodyInertia>& inertia,
+                                     const ClosedContact& a, const ClosedContact& b) {
+  Matrix6d block = Matrix6d::Zero();
+  block.topLeftCorner<4, 4>() = DelassusBlock(inertia, a, b);
+  const bool rolling_a = a.report.dimension == 6;
+  const bool rolling_b = b.report.dimension == 6;
+  if (!rolling_a && !rolling_b) return block;
+  const RollingSide none;
+  for (int s = 0; s < 2; ++s) {
+    const ContactSide& sa = a.jacobian.side[s];
+    if (sa.body < 0) continue;
+    for (int t = 0; t < 2; ++t) {
+      const ContactSide& tb = b.jacobian.side[t];
+      if (tb.body != sa.body) continue;
+      RollingDelassusParts(sa, rolling_a ? a.rolling.side[s] : none, tb,
+                           rolling_b ? b.rolling.side[t] : none, &block);
+    }
+  }
+  return block;
+}
+
+/// γ_R = Σ_sides sign J_R K_ω of a contact with rolling components for the free angular
+/// velocities (BodyStep::angular_free) [rad/s]: the rolling rows' part of c_i (16). Restitution
+/// does not act on them. kMoreau2 (`state` = u_B, else null): where the contact's friction acts
+/// against the midpoint velocity (ClosedContact::friction_midpoint) so does its rolling torque,
+/// ξ_R = γ_R,E + γ_R^B, as the sliding components (one normal cone for the coupled set).
+inline Eigen::Vector2d RollingFreeVelocity(const std::vector<BodyStep>& body,
+                                           const ClosedContact& c,
+                                           const std::vector<BodyState>* state = nullptr) {
+  const bool midpoint = state != nullptr && c.friction_midpoint;
+  Eigen::Vector2d gamma = Eigen::Vector2d::Zero();
+  for (int s = 0; s < 2; ++s) {
+    const ContactSide& side = c.jacobian.side[s];
+    if (side.body < 0) continue;
+    const std::size_t b = static_cast<std::size_t>(side.body);
+    gamma += side.sign * (c.rolling.side[s].rows * body[b].angular_free);
+    if (midpoint) gamma += side.sign * (c.rolling.side[s].rows * (*state)[b].angular_velocity);
+  }
+  return gamma;
+}
+
+/// (18) for the rolling rows: the torque Λ_R1 t1 + Λ_R2 t2 on B and its opposite on A, added
+/// to the sides' angular contact sums (in K).
+inline void AddRollingImpulse(const ClosedContact& c, const Eigen::Vector2d& rolling,
+                              std::vector<BodyStep>* body) {
+  for (int s = 0; s < 2; ++s) {
+    const ContactSide& side = c.jacobian.side[s];
+    if (side.body < 0) continue;
+    (*body)[static_cast<std::size_t>(side.body)].angular_contact +=
+        side.sign * (c.rolling.side[s].rows.transpose() * rolling);
+  }
 }
 
 /// (16) c_i = W_iᵀ M⁻¹ h Δt + (1 + ε_i) γ_i^B = W_iᵀ(u_B + M⁻¹hΔt) + ε_i γ_i^B: the contact's
@@ -150,11 +207,15 @@ class IslandProblem {
              StepData* data, StepStatistics* stats) {
     // one contact (a top on the ground) on an explicit step: without the block problem
     const Island& island = islands.islands()[index];
+    // an island with a rolling contact: in 6-blocks (rolling_contact_solver.h)
+    if (data->any_rolling && HasRollingContact(islands, index, *data)) {
+      return SolveBlocks<true>(model, options, state, islands, index, data, stats);
+    }
     if (island.contact_count == 1 && !data->implicit) {
       return SolveLoneContact(model, options, static_cast<std::size_t>(islands.contact(island, 0)),
                               data, stats);
     }
-    return SolveBlocks(model, options, state, islands, index, data, stats);
+    return SolveBlocks<false>(model, options, state, islands, index, data, stats);
   }
 
  private:
@@ -162,11 +223,17 @@ class IslandProblem {
   // (ContactSolver::SolveOnePrevalidated)
   bool SolveLoneContact(const Model& model, const SimulatorOptions& options, std::size_t i,
                         StepData* data, StepStatistics* stats);
-  // the block problem of the island's m contacts (m × m blocks G_ij), and the implicit passes
+  // whether island `index` has a contact with rolling components (dimension 6)
+  static bool HasRollingContact(const Islands& islands, std::size_t index, const StepData& data);
+  // the block problem of the island's m contacts (m × m blocks G_ij), and the implicit passes;
+  // kRolling: in 6-blocks, by RollingContactSolver (the island has a rolling contact)
+  template <bool kRolling>
   bool SolveBlocks(const Model& model, const SimulatorOptions& options,
                    const std::vector<BodyState>& state, const Islands& islands, std::size_t index,
                    StepData* data, StepStatistics* stats);
-  // (18): the contact impulses Σ W_iΛ_i of the island's contacts from lambda_
+  // (18): the contact impulses Σ W_iΛ_i of the island's contacts from lambda_ (kRolling: from
+  // rolling_lambda_, the rolling torques too)
+  template <bool kRolling>
   void ApplyImpulses(const Islands& islands, std::size_t index, StepData* data) const;
   // what the solve leaves in the contact's report and memory (`alone`: the only contact of its
   // island)
@@ -180,6 +247,10 @@ class IslandProblem {
   std::vector<Eigen::Vector4d> lambda_;
   std::vector<double> rim_hints_;  // with lambda_: the solver's warm start of B_F's prox
   SolverStatistics island_stats_;
+  // the same for an island with a rolling contact, in 6-blocks
+  RollingContactSolver rolling_solver_;
+  RollingBlockProblem rolling_problem_;
+  std::vector<Vector6d> rolling_lambda_;
 };
 
 /// The bodies without a closed contact on an implicit step: ω_E by the implicit midpoint rule

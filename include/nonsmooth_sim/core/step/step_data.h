@@ -44,6 +44,8 @@ struct BodyStep {
 struct ClosedContact {
   ContactState report;          ///< geometry, frame, law at q_M; percussion and γ_E after solve
   ContactJacobian jacobian;     ///< W at q_M
+  /// the rolling rows of W at q_M, set only where report.dimension == 6
+  RollingJacobian rolling;
   /// γ^B = W(q_M)ᵀu_B (computed only where the law's ε ≠ 0 or for Integrator::kMoreau2, zero
   /// otherwise)
   Eigen::Vector4d gamma_begin = Eigen::Vector4d::Zero();
@@ -69,6 +71,8 @@ struct StepData {
   long step = 0;          ///< steps taken: the clock of ContactMemory's closing steps
   bool implicit = false;  ///< this step uses the implicit midpoint rule (ComputeMidpoints)
   bool second_order = false;  ///< this step is Integrator::kMoreau2's
+  /// a closed contact of this step has rolling components (dimension 6, HasRolling)
+  bool any_rolling = false;
   /// Δt of the last step taken if it was kMoreau2's (its γ_E and end gaps are in the memory),
   /// else 0 [s]
   double previous_time_step = 0.0;

@@ -23,10 +23,13 @@ struct ContactState {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< contact point on B, world [m]
   ContactFrame frame;   ///< n (A → B), t1, t2, world
   ContactLaw law;       ///< the pair's law (CombineLaws), R̄ of a face patch where it is one
-  int dimension = 1;    ///< ContactDimension(law)
+  int dimension = 1;    ///< ContactDimensionWithRolling(law): 1, 3, 4 or 6
   /// Λ = (Λ_N, Λ_T1, Λ_T2, Λ_τ) on B [N s, N s, N s, N m s]; components the contact does not
   /// model are 0.
   Eigen::Vector4d percussion = Eigen::Vector4d::Zero();
+  /// Λ_R = (Λ_R1, Λ_R2), the rolling percussion on B about t1, t2 [N m s]; 0 unless the contact
+  /// has rolling components (dimension 6)
+  Eigen::Vector2d rolling_percussion = Eigen::Vector2d::Zero();
   /// γ_E = W(q_M)ᵀu_E [m/s, m/s, m/s, rad/s]: velocity of B relative to A, the one the law
   /// constrained.
   Eigen::Vector4d relative_velocity = Eigen::Vector4d::Zero();
