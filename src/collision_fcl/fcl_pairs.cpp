@@ -5,6 +5,7 @@
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -14,9 +15,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "nonsmooth_sim/core/collision/closest_points.h"
 
@@ -39,8 +42,10 @@ constexpr double kRefinedGapChange = 1e-11;
 constexpr double kManifoldNormalTolerance = 1e-6;
 
 // FCL's lengths: full cylinder/capsule length lz = 2l, full box sides 2h.
+// A convex hull: fcl::Convex over the hull's own vertex and face arrays (shared, not copied); its
+// constructor builds the vertex adjacency (FCL walks it for support points above 32 vertices).
 using FclGeometry = std::variant<std::monostate, fcl::Sphered, fcl::Capsuled, fcl::Ellipsoidd,
-                                 fcl::Cylinderd, fcl::Boxd>;
+                                 fcl::Cylinderd, fcl::Boxd, fcl::Convexd>;
 
 void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
   switch (shape.type) {
@@ -54,6 +59,16 @@ void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
       geometry->emplace<fcl::Cylinderd>(shape.radius, 2.0 * shape.half_length);
       return;
     case ShapeType::kBox: geometry->emplace<fcl::Boxd>(2.0 * shape.half_extents); return;
+    case ShapeType::kConvexHull: {
+      if (!shape.hull) return;
+      // aliasing shared_ptrs: they keep the hull alive and point into it
+      const std::shared_ptr<const std::vector<Eigen::Vector3d>> vertices(shape.hull,
+                                                                         &shape.hull->vertices);
+      const std::shared_ptr<const std::vector<int>> faces(shape.hull, &shape.hull->faces);
+      geometry->emplace<fcl::Convexd>(vertices, shape.hull->face_count, faces,
+                                      /*throw_if_invalid=*/false);
+      return;
+    }
   }
 }
 
@@ -102,6 +117,9 @@ Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose,
     }
     case ShapeType::kBox:
       for (int j = 0; j < 3; ++j) x[j] = sign(d[j]) * shape.half_extents[j];
+      break;
+    case ShapeType::kConvexHull:
+      if (shape.hull) x = shape.hull->vertices[HullSupportVertex(*shape.hull, d)];
       break;
   }
   return pose * x;
@@ -192,6 +210,14 @@ ContactGeometry RefinedContact(const Shape& a, const Eigen::Isometry3d& pose_a,
     if (gap > face_gap) face_gap = gap, face_normal = n;
   };
   for (const auto& [shape, pose] : {std::pair{&a, &pose_a}, std::pair{&b, &pose_b}}) {
+    // a hull's face normals (outward from A, inward to B)
+    if (shape->type == ShapeType::kConvexHull && shape->hull) {
+      const double sign = shape == &a ? 1.0 : -1.0;
+      for (const Eigen::Vector3d& normal : shape->hull->face_normal) {
+        consider(sign * (pose->linear() * normal));
+      }
+      continue;
+    }
     // a box's three axes, a cylinder's axis, both ways
     if (shape->type != ShapeType::kBox && shape->type != ShapeType::kCylinder) continue;
     for (int j = shape->type == ShapeType::kBox ? 0 : 2; j < 3; ++j) {
@@ -339,7 +365,13 @@ void RegisterFclPairs(CollisionTable* table) {
                                      {ShapeType::kEllipsoid, ShapeType::kBox},
                                      {ShapeType::kCylinder, ShapeType::kCylinder},
                                      {ShapeType::kCylinder, ShapeType::kBox},
-                                     {ShapeType::kBox, ShapeType::kBox}};
+                                     {ShapeType::kBox, ShapeType::kBox},
+                                     {ShapeType::kSphere, ShapeType::kConvexHull},
+                                     {ShapeType::kCapsule, ShapeType::kConvexHull},
+                                     {ShapeType::kEllipsoid, ShapeType::kConvexHull},
+                                     {ShapeType::kCylinder, ShapeType::kConvexHull},
+                                     {ShapeType::kBox, ShapeType::kConvexHull},
+                                     {ShapeType::kConvexHull, ShapeType::kConvexHull}};
   for (const auto& pair : kPairs) table->Register(pair[0], pair[1], &CollideFcl);
 }
 

@@ -1,7 +1,9 @@
 // Narrow phase by FCL (the Flexible Collision Library 0.7, as MoveIt uses it) for the pairs of
 // non-plane shapes that have no closed form in the core: sphere–ellipsoid, sphere–cylinder,
 // capsule–ellipsoid, capsule–cylinder, capsule–box, ellipsoid–ellipsoid, ellipsoid–cylinder,
-// ellipsoid–box, cylinder–cylinder, cylinder–box, box–box. A separate library: the core stays
+// ellipsoid–box, cylinder–cylinder, cylinder–box, box–box, and a convex hull (a mesh's, shape.h)
+// against every shape but the plane (fcl::Convex over the hull's vertices and faces; the
+// refinement below also starts from the hull's face normals). A separate library: the core stays
 // Eigen-only.
 //
 // CollideFcl() maps FCL's answers onto ContactGeometry (collision.h). FCL's contact normal points
@@ -41,9 +43,10 @@
 // face axes to edge axes).
 //
 // Unlike the closed forms, CollideFcl allocates (FCL's result vectors, GJK's and MPR's work
-// space) and costs 0.4–80 µs a call against 5–45 ns for the closed forms
-// (bench/collision_bench.cpp: FCL's GJK takes ~10 µs a call on curved shapes near contact, and a
-// refinement makes 2–6). It does not throw and reads no global state but FCL's dispatch tables.
+// space; for a hull, fcl::Convex's vertex adjacency, built each call) and costs 0.4–80 µs a
+// call against 5–45 ns for the closed forms (bench/collision_bench.cpp: FCL's GJK takes ~10 µs
+// a call on curved shapes near contact, and a refinement makes 2–6). It does not throw and
+// reads no global state but FCL's dispatch tables.
 #ifndef NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 #define NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 
