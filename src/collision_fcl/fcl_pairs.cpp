@@ -14,9 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -42,10 +44,42 @@ constexpr double kRefinedGapChange = 1e-11;
 constexpr double kManifoldNormalTolerance = 1e-6;
 
 // FCL's lengths: full cylinder/capsule length lz = 2l, full box sides 2h.
-// A convex hull: fcl::Convex over the hull's own vertex and face arrays (shared, not copied); its
-// constructor builds the vertex adjacency (FCL walks it for support points above 32 vertices).
+// A convex hull: fcl::Convex over the hull's own vertex and face arrays (shared, not copied),
+// built once per hull and thread (ConvexOf).
 using FclGeometry = std::variant<std::monostate, fcl::Sphered, fcl::Capsuled, fcl::Ellipsoidd,
-                                 fcl::Cylinderd, fcl::Boxd, fcl::Convexd>;
+                                 fcl::Cylinderd, fcl::Boxd, std::shared_ptr<const fcl::Convexd>>;
+
+// Hulls whose fcl::Convex a thread keeps; beyond it, those of freed hulls are dropped.
+constexpr std::size_t kCachedConvexes = 64;
+
+// The fcl::Convex of `hull`: its constructor builds the vertex adjacency (FCL walks it for
+// support points above 32 vertices, and checks the topology), too costly for every call. Kept per
+// thread (no lock) by the hull's address, checked against a weak_ptr: a hull freed and another
+// allocated at its address is not mistaken for it.
+std::shared_ptr<const fcl::Convexd> ConvexOf(const std::shared_ptr<const ConvexHull>& hull) {
+  struct Entry {
+    std::weak_ptr<const ConvexHull> hull;
+    std::shared_ptr<const fcl::Convexd> convex;
+  };
+  thread_local std::unordered_map<const ConvexHull*, Entry> cache;
+  Entry& entry = cache[hull.get()];
+  if (entry.convex && entry.hull.lock() == hull) return entry.convex;
+  // non-owning (aliasing an empty shared_ptr): the cache must not keep a hull alive; an entry is
+  // used only while its hull lives
+  const std::shared_ptr<const std::vector<Eigen::Vector3d>> vertices(std::shared_ptr<void>(),
+                                                                     &hull->vertices);
+  const std::shared_ptr<const std::vector<int>> faces(std::shared_ptr<void>(), &hull->faces);
+  entry.hull = hull;
+  entry.convex = std::make_shared<const fcl::Convexd>(vertices, hull->face_count, faces,
+                                                      /*throw_if_invalid=*/false);
+  const std::shared_ptr<const fcl::Convexd> convex = entry.convex;
+  if (cache.size() > kCachedConvexes) {
+    for (auto it = cache.begin(); it != cache.end();) {
+      it = it->second.hull.expired() ? cache.erase(it) : std::next(it);
+    }
+  }
+  return convex;
+}
 
 void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
   switch (shape.type) {
@@ -59,24 +93,20 @@ void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
       geometry->emplace<fcl::Cylinderd>(shape.radius, 2.0 * shape.half_length);
       return;
     case ShapeType::kBox: geometry->emplace<fcl::Boxd>(2.0 * shape.half_extents); return;
-    case ShapeType::kConvexHull: {
-      if (!shape.hull) return;
-      // aliasing shared_ptrs: they keep the hull alive and point into it
-      const std::shared_ptr<const std::vector<Eigen::Vector3d>> vertices(shape.hull,
-                                                                         &shape.hull->vertices);
-      const std::shared_ptr<const std::vector<int>> faces(shape.hull, &shape.hull->faces);
-      geometry->emplace<fcl::Convexd>(vertices, shape.hull->face_count, faces,
-                                      /*throw_if_invalid=*/false);
+    case ShapeType::kConvexHull:
+      if (shape.hull) geometry->emplace<std::shared_ptr<const fcl::Convexd>>(ConvexOf(shape.hull));
       return;
-    }
   }
 }
 
 const fcl::CollisionGeometryd* Pointer(const FclGeometry& geometry) {
   return std::visit(
       [](const auto& g) -> const fcl::CollisionGeometryd* {
-        if constexpr (std::is_same_v<std::decay_t<decltype(g)>, std::monostate>) {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, std::monostate>) {
           return nullptr;
+        } else if constexpr (std::is_same_v<G, std::shared_ptr<const fcl::Convexd>>) {
+          return g.get();
         } else {
           return &g;
         }

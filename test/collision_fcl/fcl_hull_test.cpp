@@ -2,7 +2,9 @@
 // each pair; at 200 random samples per pair (seed 12345) near contact along a known direction
 // (SamplePair below): separated, the gap is the exact distance; penetrating by up to 2 mm, the
 // gap lies between the sampled depth and 0 and equals the projection gap along its own normal;
-// and a box as a hull gives the box's gap (its closed form against a sphere, FCL's otherwise).
+// and a box as a hull gives the box's gap (its closed form against a sphere), for 500 hulls made
+// and freed one after the other (new hulls at the addresses of freed ones: CollideFcl's cache of
+// fcl::Convex per hull must not mistake one for another).
 #include <gtest/gtest.h>
 
 #include <cstdio>

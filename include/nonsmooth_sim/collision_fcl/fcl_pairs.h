@@ -43,10 +43,11 @@
 // face axes to edge axes).
 //
 // Unlike the closed forms, CollideFcl allocates (FCL's result vectors, GJK's and MPR's work
-// space; for a hull, fcl::Convex's vertex adjacency, built each call) and costs 0.4–80 µs a
-// call against 5–45 ns for the closed forms (bench/collision_bench.cpp: FCL's GJK takes ~10 µs
-// a call on curved shapes near contact, and a refinement makes 2–6). It does not throw and
-// reads no global state but FCL's dispatch tables.
+// space) and costs 0.4–80 µs a call against 5–45 ns for the closed forms
+// (bench/collision_bench.cpp: FCL's GJK takes ~10 µs a call on curved shapes near contact, and a
+// refinement makes 2–6). It does not throw and reads no global state but FCL's dispatch tables
+// and, for a hull, a per-thread cache of its fcl::Convex (built once per hull: its vertex
+// adjacency).
 #ifndef NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 #define NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 
