@@ -3,7 +3,6 @@
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
-#include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 extern "C" {
@@ -15,6 +14,8 @@ extern "C" {
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -43,7 +44,12 @@ void CollectVertices(const aiScene& scene, const aiNode& node, const aiMatrix4x4
 // qhull's state, freed on every path out.
 class Qhull {
  public:
-  Qhull() : errors_(open_memstream(&error_text_, &error_size_)) { qh_zero(&qh_, errors_); }
+  // qhull's messages go to a memory stream (never to stderr: a library does not print), or to
+  // /dev/null if none can be opened
+  Qhull() : errors_(open_memstream(&error_text_, &error_size_)) {
+    if (errors_ == nullptr) errors_ = std::fopen("/dev/null", "w");
+    qh_zero(&qh_, errors_);
+  }
   ~Qhull() {
     int long_left = 0;
     int short_left = 0;
