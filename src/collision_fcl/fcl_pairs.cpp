@@ -310,6 +310,99 @@ int BoxBoxManifold(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& po
   return 1;
 }
 
+// cos of the largest angle between the contact normal and two faces' normals for which they
+// touch face to face (HullManifold): 1e-3 rad.
+constexpr double kFaceToFaceCos = 1.0 - 5e-7;
+
+// A box as a hull (its corners and faces), for HullManifold.
+std::shared_ptr<const ConvexHull> BoxAsHull(const Eigen::Vector3d& h) {
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i) {
+    v.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+  }
+  return MakeConvexHull(std::move(v), {4, 0, 2, 3, 1, 4, 4, 5, 7, 6, 4, 0, 4, 6, 2,
+                                       4, 1, 3, 7, 5, 4, 0, 1, 5, 4, 4, 2, 6, 7, 3});
+}
+
+// The face of `hull` (at `pose`) whose outward normal is closest to the world direction d, and
+// the cosine between them.
+std::pair<int, double> FacingFace(const ConvexHull& hull, const Eigen::Isometry3d& pose,
+                                  const Eigen::Vector3d& d) {
+  const Eigen::Vector3d local = pose.linear().transpose() * d;
+  int best = 0;
+  for (int f = 1; f < hull.face_count; ++f) {
+    if (hull.face_normal[f].dot(local) > hull.face_normal[best].dot(local)) best = f;
+  }
+  return {best, hull.face_normal[best].dot(local)};
+}
+
+// A hull (or a box) against a hull (or a box), with the contact c: when a face of each lies along
+// c's normal n (within 1e-3 rad), they touch face to face and one point does not hold a body
+// resting on the other (it rocks about it). The face of B is clipped against the face of A
+// (Sutherland–Hodgman, in A's face plane: B's polygon against each edge of A's), and each corner
+// of the overlap on B's face is a contact (gap = n·(x − p_A), its height above A's face along n;
+// point_b = x, point_a = x − gap n), those with gap ≤ margin, at most kMaxPairContacts (evenly
+// spaced around the overlap). Otherwise, or without any, c alone.
+int HullManifold(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                 const Eigen::Isometry3d& pose_b, const ContactGeometry& c, double margin,
+                 ContactGeometry* out) {
+  const std::shared_ptr<const ConvexHull> hull_a =
+      a.type == ShapeType::kBox ? BoxAsHull(a.half_extents) : a.hull;
+  const std::shared_ptr<const ConvexHull> hull_b =
+      b.type == ShapeType::kBox ? BoxAsHull(b.half_extents) : b.hull;
+  const auto [face_a, cos_a] = FacingFace(*hull_a, pose_a, c.normal);
+  const auto [face_b, cos_b] = FacingFace(*hull_b, pose_b, -c.normal);
+  out[0] = c;
+  if (!(cos_a >= kFaceToFaceCos && cos_b >= kFaceToFaceCos)) return 1;
+  const auto corners = [](const ConvexHull& hull, const Eigen::Isometry3d& pose, int face) {
+    std::vector<Eigen::Vector3d> x;
+    const int start = hull.face_start[face];
+    for (int k = 1; k <= hull.faces[start]; ++k) {
+      x.push_back(pose * hull.vertices[hull.faces[start + k]]);
+    }
+    return x;
+  };
+  // A's face, counter-clockwise about its outward normal n_A; B's, reversed to the same sense
+  const std::vector<Eigen::Vector3d> reference = corners(*hull_a, pose_a, face_a);
+  std::vector<Eigen::Vector3d> polygon = corners(*hull_b, pose_b, face_b);
+  std::reverse(polygon.begin(), polygon.end());
+  const Eigen::Vector3d n_a = pose_a.linear() * hull_a->face_normal[face_a];
+  // clip by each edge (p, q) of A's face: keep the side n_A × (q − p) points to
+  for (std::size_t e = 0; e < reference.size() && !polygon.empty(); ++e) {
+    const Eigen::Vector3d& p = reference[e];
+    const Eigen::Vector3d& q = reference[(e + 1) % reference.size()];
+    const Eigen::Vector3d inward = n_a.cross(q - p);
+    std::vector<Eigen::Vector3d> clipped;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector3d& x = polygon[i];
+      const Eigen::Vector3d& y = polygon[(i + 1) % polygon.size()];
+      const double sx = inward.dot(x - p);
+      const double sy = inward.dot(y - p);
+      if (sx >= 0.0) clipped.push_back(x);
+      if ((sx >= 0.0) != (sy >= 0.0)) clipped.push_back(x + (sx / (sx - sy)) * (y - x));
+    }
+    polygon = std::move(clipped);
+  }
+  const Eigen::Vector3d& origin = reference.front();
+  const int found = static_cast<int>(polygon.size());
+  const int keep = std::min(found, kMaxPairContacts);
+  int count = 0;
+  for (int j = 0; j < keep; ++j) {
+    const Eigen::Vector3d& x = polygon[static_cast<std::size_t>(j * found / keep)];
+    ContactGeometry& m = out[count];
+    m = ContactGeometry{};
+    m.normal = c.normal;
+    m.gap = c.normal.dot(x - origin);
+    m.point_b = x;
+    m.point_a = x - m.gap * m.normal;
+    m.feature = j;
+    if (m.gap <= margin) ++count;
+  }
+  if (count > 0) return count;
+  out[0] = c;
+  return 1;
+}
+
 }  // namespace
 
 int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
@@ -380,6 +473,10 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   if (a.type == ShapeType::kBox && b.type == ShapeType::kBox) {
     return BoxBoxManifold(fcl_a, pose_a, fcl_b, pose_b, c, separation, margin, out);
   }
+  const auto polyhedral = [](const Shape& s) {
+    return s.type == ShapeType::kBox || (s.type == ShapeType::kConvexHull && s.hull);
+  };
+  if (polyhedral(a) && polyhedral(b)) return HullManifold(a, pose_a, b, pose_b, c, margin, out);
   out[0] = c;
   return 1;
 }

@@ -4,7 +4,8 @@
 // gap lies between the sampled depth and 0 and equals the projection gap along its own normal;
 // and a box as a hull gives the box's gap (its closed form against a sphere), for 500 hulls made
 // and freed one after the other (new hulls at the addresses of freed ones: CollideFcl's cache of
-// fcl::Convex per hull must not mistake one for another).
+// fcl::Convex per hull must not mistake one for another); faces touching face to face give the
+// corners of their overlap, so that a hull die rests on a box or hull table.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "../core/collision_test_util.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
+#include "nonsmooth_sim/core/simulator.h"
 
 namespace nonsmooth_sim {
 namespace {
@@ -127,6 +129,79 @@ TEST(FclHull, ABoxAsAHullCollidesAsTheBox) {
   ::testing::Test::RecordProperty("worst_normal", Scientific(worst_normal));
   EXPECT_LT(worst_gap, 1e-8);
   EXPECT_LT(worst_normal, 1e-4);
+}
+
+TEST(FclHull, FacesTouchingFaceToFaceGiveTheCornersOfTheirOverlap) {
+  // a 0.2 m square face on an equal one turned by 45° about the normal: their overlap is a
+  // regular octagon, eight contacts at the same gap (here -1 mm), on both faces' planes
+  const Eigen::Vector3d h(0.1, 0.1, 0.05);
+  Eigen::Isometry3d below = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d above = Eigen::Isometry3d::Identity();
+  above.linear() = Rotation(kPi / 4, Eigen::Vector3d::UnitZ());
+  above.translation() = Eigen::Vector3d(0.0, 0.0, 0.1 - 1e-3);
+  for (const Shape& table : {Shape::Box(h), Shape::Hull(BoxHull(h))}) {
+    ContactGeometry out[kMaxPairContacts];
+    const int n = CollideFcl(table, below, Shape::Hull(BoxHull(h)), above, 0.01, out);
+    ASSERT_EQ(n, 8) << ShapeTypeName(table.type);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(out[i].gap, -1e-3, 1e-12);
+      EXPECT_LT((out[i].normal - Eigen::Vector3d::UnitZ()).norm(), 1e-9);
+      EXPECT_NEAR(out[i].point_a.z(), 0.05, 1e-12);  // on the table's face
+      // a corner of the octagon: on an edge of one square or the other, 0.1 from the axis
+      const Eigen::Vector3d in_above = above.inverse() * out[i].point_b;
+      EXPECT_NEAR(std::max(out[i].point_b.head<2>().cwiseAbs().maxCoeff(),
+                           in_above.head<2>().cwiseAbs().maxCoeff()),
+                  0.1, 1e-12);
+    }
+  }
+}
+
+TEST(FclHull, AHullDieRestsOnABoxOrHullTableAsTheBoxDie) {
+  // one contact would let it rock about it (measured without the face contacts: tilted by
+  // 0.1 rad after 2 s); with them it rests on four, like the box on the box
+  const Eigen::Vector3d h(0.1, 0.07, 0.05);
+  const Eigen::Vector3d slab(1.0, 1.0, 0.1);
+  for (const Shape& table : {Shape::Box(slab), Shape::Hull(BoxHull(slab))}) {
+    Scene scene;
+    RigidBody die;
+    die.name = "die";
+    die.mass = 0.5;
+    die.inertia = ShapeUnitInertia(Shape::Box(h)) * (die.mass / ShapeVolume(Shape::Box(h)));
+    scene.bodies = {die};
+    Collider collider;
+    collider.name = "die";
+    collider.body = 0;
+    collider.shape = Shape::Hull(BoxHull(h));
+    collider.law.mu = 0.5;
+    collider.law.friction_set = FrictionSet::kCoulomb;
+    Collider top = collider;
+    top.name = "table";
+    top.body = kWorld;
+    top.shape = table;
+    top.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.1);
+    scene.colliders = {collider, top};
+    BodyState start;
+    start.position = Eigen::Vector3d(0.05, 0.02, h.z());
+    scene.initial_state = {start};
+    RegisterFclPairs(&scene.collision_table);
+    SimulatorOptions options;
+    options.time_step = 1e-3;
+    Simulator sim(scene, options);
+    double worst_speed = 0.0;
+    int contacts = 0;
+    for (int k = 0; k < 2000; ++k) {
+      contacts = sim.Step().closed_contacts;
+      const BodyState& s = sim.state()[0];
+      worst_speed = std::max(worst_speed, s.linear_velocity.norm() + s.angular_velocity.norm());
+    }
+    const std::string name(ShapeTypeName(table.type));
+    ::testing::Test::RecordProperty(name + "_worst_speed", Scientific(worst_speed));
+    EXPECT_EQ(contacts, 4) << name;
+    EXPECT_LT(worst_speed, 1e-6) << name;  // measured: 3e-8
+    EXPECT_LT(sim.state()[0].orientation.angularDistance(Eigen::Quaterniond::Identity()), 1e-9)
+        << name;
+    EXPECT_NEAR(sim.state()[0].position.z(), h.z(), 1e-6) << name;
+  }
 }
 
 }  // namespace

@@ -34,6 +34,11 @@
 //  - Box–box separated within the margin or touching: FCL's clipping with B moved into A by ε
 //    along n, moved back, so that a box resting on a box has its four corners as contacts before
 //    it touches as after (BoxBoxManifold in fcl_pairs.cpp).
+//  - A hull against a hull or a box, separated within the margin or penetrating, with a face of
+//    each along the contact's normal n (within 1e-3 rad): face to face, one point would let a
+//    body resting on the other rock about it. B's face is clipped against A's (Sutherland–
+//    Hodgman in A's face plane) and each corner of the overlap is a contact, its gap its height
+//    above A's face along n, at most kMaxPairContacts (HullManifold in fcl_pairs.cpp).
 // ε = kFclRefinementSeparation × the smaller bounding radius. Accuracy, measured in
 // test/collision_fcl against the closed forms and the support functions: gaps and consistency
 // (|PG(n) − gap|) to ~1e-11 m; where both shapes have edges or rims (cylinder–box, cylinder–
