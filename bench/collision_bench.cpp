@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/collision/capsule_capsule.h"
@@ -13,6 +14,7 @@
 #include "nonsmooth_sim/core/collision/plane_capsule.h"
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 #include "nonsmooth_sim/core/collision/plane_ellipsoid.h"
+#include "nonsmooth_sim/core/collision/plane_hull.h"
 #include "nonsmooth_sim/core/collision/plane_sphere.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/collision/sphere_capsule.h"
@@ -38,6 +40,17 @@ Shape Example(ShapeType type) {
     case ShapeType::kEllipsoid: return Shape::Ellipsoid({0.12, 0.08, 0.05});
     case ShapeType::kCylinder: return Shape::Cylinder(0.08, 0.05);
     case ShapeType::kBox: return Shape::Box({0.1, 0.07, 0.05});
+    case ShapeType::kConvexHull: {
+      // the box above as a hull (a mesh's hull comes from scene_io): 8 vertices, 6 faces
+      const Eigen::Vector3d h(0.1, 0.07, 0.05);
+      std::vector<Eigen::Vector3d> v;
+      for (int i = 0; i < 8; ++i) {
+        v.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
+                       (i & 4) ? h.z() : -h.z());
+      }
+      return Shape::Hull(MakeConvexHull(v, {4, 0, 2, 3, 1, 4, 4, 5, 7, 6, 4, 0, 4, 6, 2,
+                                            4, 1, 3, 7, 5, 4, 0, 1, 5, 4, 4, 2, 6, 7, 3}));
+    }
   }
   return Shape::Sphere(0.1);
 }
@@ -91,6 +104,7 @@ NONSMOOTH_SIM_PAIR_BENCH(plane_capsule, kPlane, kCapsule, CollidePlaneCapsule);
 NONSMOOTH_SIM_PAIR_BENCH(plane_ellipsoid, kPlane, kEllipsoid, CollidePlaneEllipsoid);
 NONSMOOTH_SIM_PAIR_BENCH(plane_cylinder, kPlane, kCylinder, CollidePlaneCylinder);
 NONSMOOTH_SIM_PAIR_BENCH(plane_box, kPlane, kBox, CollidePlaneBox);
+NONSMOOTH_SIM_PAIR_BENCH(plane_hull, kPlane, kConvexHull, CollidePlaneHull);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_sphere, kSphere, kSphere, CollideSphereSphere);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_capsule, kSphere, kCapsule, CollideSphereCapsule);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_box, kSphere, kBox, CollideSphereBox);
@@ -106,6 +120,9 @@ NONSMOOTH_SIM_PAIR_BENCH(fcl_ellipsoid_box, kEllipsoid, kBox, CollideFcl);
 NONSMOOTH_SIM_PAIR_BENCH(fcl_cylinder_cylinder, kCylinder, kCylinder, CollideFcl);
 NONSMOOTH_SIM_PAIR_BENCH(fcl_cylinder_box, kCylinder, kBox, CollideFcl);
 NONSMOOTH_SIM_PAIR_BENCH(fcl_box_box, kBox, kBox, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_sphere_hull, kSphere, kConvexHull, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_box_hull, kBox, kConvexHull, CollideFcl);
+NONSMOOTH_SIM_PAIR_BENCH(fcl_hull_hull, kConvexHull, kConvexHull, CollideFcl);
 // FCL on pairs that have a closed form, for comparison
 NONSMOOTH_SIM_PAIR_BENCH(fcl_sphere_sphere, kSphere, kSphere, CollideFcl);
 NONSMOOTH_SIM_PAIR_BENCH(fcl_capsule_capsule, kCapsule, kCapsule, CollideFcl);

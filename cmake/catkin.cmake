@@ -32,7 +32,7 @@ generate_messages(DEPENDENCIES std_msgs geometry_msgs)
 # FCL pairs, the node's library) and the message headers.
 catkin_package(
   INCLUDE_DIRS include
-  LIBRARIES nonsmooth_sim_ros nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_scene_io nonsmooth_sim_core
+  LIBRARIES nonsmooth_sim_ros nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_scene_io nonsmooth_sim_mesh nonsmooth_sim_core
   CATKIN_DEPENDS roscpp message_runtime std_msgs std_srvs geometry_msgs visualization_msgs
                  rosgraph_msgs tf2_msgs diagnostic_msgs diagnostic_updater
   DEPENDS EIGEN3 urdfdom)

@@ -5,13 +5,13 @@
 # (test/install/install_test.py checks exactly that). Included last from CMakeLists.txt, with ROS.
 #
 #   P/lib/nonsmooth_sim/        nonsmooth_sim_node, simulate, node_speed_subscriber, the report scripts
-#   P/lib/                      the static libraries (core, scene_io, collision_fcl, ros)
+#   P/lib/                      the static libraries (core, mesh, scene_io, collision_fcl, ros)
 #   P/include/nonsmooth_sim/    the headers (and the generated message headers, by catkin)
 #   P/share/nonsmooth_sim/      package.xml, launch/, urdf/, config/ (msg/, srv/, cmake/ by catkin)
 
 install(TARGETS simulate nonsmooth_sim_node node_speed_subscriber
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-install(TARGETS nonsmooth_sim_core nonsmooth_sim_scene_io nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_ros
+install(TARGETS nonsmooth_sim_core nonsmooth_sim_mesh nonsmooth_sim_scene_io nonsmooth_sim_world nonsmooth_sim_collision_fcl nonsmooth_sim_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION}

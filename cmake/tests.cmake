@@ -5,7 +5,8 @@ include(${PROJECT_SOURCE_DIR}/cmake/gtests.cmake)
 
 nonsmooth_sim_add_gtests(DIR test/core LIBRARIES nonsmooth_sim_core)
 # "scene_io.<Suite>.<Test>"
-nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io)
+nonsmooth_sim_add_gtests(DIR test/scene_io PREFIX scene_io LIBRARIES nonsmooth_sim_scene_io
+                         nonsmooth_sim_mesh nonsmooth_sim_collision_fcl)
 nonsmooth_sim_add_gtests(DIR test/collision_fcl LIBRARIES nonsmooth_sim_collision_fcl)
 # the world on its own: "world.<Suite>.<Test>"
 nonsmooth_sim_add_gtests(DIR test/world PREFIX world LIBRARIES nonsmooth_sim_world

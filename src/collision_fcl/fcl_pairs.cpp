@@ -5,6 +5,7 @@
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -13,10 +14,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <memory>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "nonsmooth_sim/core/collision/closest_points.h"
 
@@ -39,8 +44,42 @@ constexpr double kRefinedGapChange = 1e-11;
 constexpr double kManifoldNormalTolerance = 1e-6;
 
 // FCL's lengths: full cylinder/capsule length lz = 2l, full box sides 2h.
+// A convex hull: fcl::Convex over the hull's own vertex and face arrays (shared, not copied),
+// built once per hull and thread (ConvexOf).
 using FclGeometry = std::variant<std::monostate, fcl::Sphered, fcl::Capsuled, fcl::Ellipsoidd,
-                                 fcl::Cylinderd, fcl::Boxd>;
+                                 fcl::Cylinderd, fcl::Boxd, std::shared_ptr<const fcl::Convexd>>;
+
+// Hulls whose fcl::Convex a thread keeps; beyond it, those of freed hulls are dropped.
+constexpr std::size_t kCachedConvexes = 64;
+
+// The fcl::Convex of `hull`: its constructor builds the vertex adjacency (FCL walks it for
+// support points above 32 vertices, and checks the topology), too costly for every call. Kept per
+// thread (no lock) by the hull's address, checked against a weak_ptr: a hull freed and another
+// allocated at its address is not mistaken for it.
+std::shared_ptr<const fcl::Convexd> ConvexOf(const std::shared_ptr<const ConvexHull>& hull) {
+  struct Entry {
+    std::weak_ptr<const ConvexHull> hull;
+    std::shared_ptr<const fcl::Convexd> convex;
+  };
+  thread_local std::unordered_map<const ConvexHull*, Entry> cache;
+  Entry& entry = cache[hull.get()];
+  if (entry.convex && entry.hull.lock() == hull) return entry.convex;
+  // non-owning (aliasing an empty shared_ptr): the cache must not keep a hull alive; an entry is
+  // used only while its hull lives
+  const std::shared_ptr<const std::vector<Eigen::Vector3d>> vertices(std::shared_ptr<void>(),
+                                                                     &hull->vertices);
+  const std::shared_ptr<const std::vector<int>> faces(std::shared_ptr<void>(), &hull->faces);
+  entry.hull = hull;
+  entry.convex = std::make_shared<const fcl::Convexd>(vertices, hull->face_count, faces,
+                                                      /*throw_if_invalid=*/false);
+  const std::shared_ptr<const fcl::Convexd> convex = entry.convex;
+  if (cache.size() > kCachedConvexes) {
+    for (auto it = cache.begin(); it != cache.end();) {
+      it = it->second.hull.expired() ? cache.erase(it) : std::next(it);
+    }
+  }
+  return convex;
+}
 
 void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
   switch (shape.type) {
@@ -54,14 +93,20 @@ void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
       geometry->emplace<fcl::Cylinderd>(shape.radius, 2.0 * shape.half_length);
       return;
     case ShapeType::kBox: geometry->emplace<fcl::Boxd>(2.0 * shape.half_extents); return;
+    case ShapeType::kConvexHull:
+      if (shape.hull) geometry->emplace<std::shared_ptr<const fcl::Convexd>>(ConvexOf(shape.hull));
+      return;
   }
 }
 
 const fcl::CollisionGeometryd* Pointer(const FclGeometry& geometry) {
   return std::visit(
       [](const auto& g) -> const fcl::CollisionGeometryd* {
-        if constexpr (std::is_same_v<std::decay_t<decltype(g)>, std::monostate>) {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, std::monostate>) {
           return nullptr;
+        } else if constexpr (std::is_same_v<G, std::shared_ptr<const fcl::Convexd>>) {
+          return g.get();
         } else {
           return &g;
         }
@@ -102,6 +147,9 @@ Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose,
     }
     case ShapeType::kBox:
       for (int j = 0; j < 3; ++j) x[j] = sign(d[j]) * shape.half_extents[j];
+      break;
+    case ShapeType::kConvexHull:
+      if (shape.hull) x = shape.hull->vertices[HullSupportVertex(*shape.hull, d)];
       break;
   }
   return pose * x;
@@ -192,6 +240,14 @@ ContactGeometry RefinedContact(const Shape& a, const Eigen::Isometry3d& pose_a,
     if (gap > face_gap) face_gap = gap, face_normal = n;
   };
   for (const auto& [shape, pose] : {std::pair{&a, &pose_a}, std::pair{&b, &pose_b}}) {
+    // a hull's face normals (outward from A, inward to B)
+    if (shape->type == ShapeType::kConvexHull && shape->hull) {
+      const double sign = shape == &a ? 1.0 : -1.0;
+      for (const Eigen::Vector3d& normal : shape->hull->face_normal) {
+        consider(sign * (pose->linear() * normal));
+      }
+      continue;
+    }
     // a box's three axes, a cylinder's axis, both ways
     if (shape->type != ShapeType::kBox && shape->type != ShapeType::kCylinder) continue;
     for (int j = shape->type == ShapeType::kBox ? 0 : 2; j < 3; ++j) {
@@ -247,6 +303,99 @@ int BoxBoxManifold(const fcl::CollisionGeometryd* a, const Eigen::Isometry3d& po
     m.point_b = contact.pos - 0.5 * contact.penetration_depth * m.normal + s * c.normal;
     m.point_a = m.point_b - m.gap * m.normal;
     m.feature = i;
+    if (m.gap <= margin) ++count;
+  }
+  if (count > 0) return count;
+  out[0] = c;
+  return 1;
+}
+
+// cos of the largest angle between the contact normal and two faces' normals for which they
+// touch face to face (HullManifold): 1e-3 rad.
+constexpr double kFaceToFaceCos = 1.0 - 5e-7;
+
+// A box as a hull (its corners and faces), for HullManifold.
+std::shared_ptr<const ConvexHull> BoxAsHull(const Eigen::Vector3d& h) {
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i) {
+    v.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+  }
+  return MakeConvexHull(std::move(v), {4, 0, 2, 3, 1, 4, 4, 5, 7, 6, 4, 0, 4, 6, 2,
+                                       4, 1, 3, 7, 5, 4, 0, 1, 5, 4, 4, 2, 6, 7, 3});
+}
+
+// The face of `hull` (at `pose`) whose outward normal is closest to the world direction d, and
+// the cosine between them.
+std::pair<int, double> FacingFace(const ConvexHull& hull, const Eigen::Isometry3d& pose,
+                                  const Eigen::Vector3d& d) {
+  const Eigen::Vector3d local = pose.linear().transpose() * d;
+  int best = 0;
+  for (int f = 1; f < hull.face_count; ++f) {
+    if (hull.face_normal[f].dot(local) > hull.face_normal[best].dot(local)) best = f;
+  }
+  return {best, hull.face_normal[best].dot(local)};
+}
+
+// A hull (or a box) against a hull (or a box), with the contact c: when a face of each lies along
+// c's normal n (within 1e-3 rad), they touch face to face and one point does not hold a body
+// resting on the other (it rocks about it). The face of B is clipped against the face of A
+// (Sutherland–Hodgman, in A's face plane: B's polygon against each edge of A's), and each corner
+// of the overlap on B's face is a contact (gap = n·(x − p_A), its height above A's face along n;
+// point_b = x, point_a = x − gap n), those with gap ≤ margin, at most kMaxPairContacts (evenly
+// spaced around the overlap). Otherwise, or without any, c alone.
+int HullManifold(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                 const Eigen::Isometry3d& pose_b, const ContactGeometry& c, double margin,
+                 ContactGeometry* out) {
+  const std::shared_ptr<const ConvexHull> hull_a =
+      a.type == ShapeType::kBox ? BoxAsHull(a.half_extents) : a.hull;
+  const std::shared_ptr<const ConvexHull> hull_b =
+      b.type == ShapeType::kBox ? BoxAsHull(b.half_extents) : b.hull;
+  const auto [face_a, cos_a] = FacingFace(*hull_a, pose_a, c.normal);
+  const auto [face_b, cos_b] = FacingFace(*hull_b, pose_b, -c.normal);
+  out[0] = c;
+  if (!(cos_a >= kFaceToFaceCos && cos_b >= kFaceToFaceCos)) return 1;
+  const auto corners = [](const ConvexHull& hull, const Eigen::Isometry3d& pose, int face) {
+    std::vector<Eigen::Vector3d> x;
+    const int start = hull.face_start[face];
+    for (int k = 1; k <= hull.faces[start]; ++k) {
+      x.push_back(pose * hull.vertices[hull.faces[start + k]]);
+    }
+    return x;
+  };
+  // A's face, counter-clockwise about its outward normal n_A; B's, reversed to the same sense
+  const std::vector<Eigen::Vector3d> reference = corners(*hull_a, pose_a, face_a);
+  std::vector<Eigen::Vector3d> polygon = corners(*hull_b, pose_b, face_b);
+  std::reverse(polygon.begin(), polygon.end());
+  const Eigen::Vector3d n_a = pose_a.linear() * hull_a->face_normal[face_a];
+  // clip by each edge (p, q) of A's face: keep the side n_A × (q − p) points to
+  for (std::size_t e = 0; e < reference.size() && !polygon.empty(); ++e) {
+    const Eigen::Vector3d& p = reference[e];
+    const Eigen::Vector3d& q = reference[(e + 1) % reference.size()];
+    const Eigen::Vector3d inward = n_a.cross(q - p);
+    std::vector<Eigen::Vector3d> clipped;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector3d& x = polygon[i];
+      const Eigen::Vector3d& y = polygon[(i + 1) % polygon.size()];
+      const double sx = inward.dot(x - p);
+      const double sy = inward.dot(y - p);
+      if (sx >= 0.0) clipped.push_back(x);
+      if ((sx >= 0.0) != (sy >= 0.0)) clipped.push_back(x + (sx / (sx - sy)) * (y - x));
+    }
+    polygon = std::move(clipped);
+  }
+  const Eigen::Vector3d& origin = reference.front();
+  const int found = static_cast<int>(polygon.size());
+  const int keep = std::min(found, kMaxPairContacts);
+  int count = 0;
+  for (int j = 0; j < keep; ++j) {
+    const Eigen::Vector3d& x = polygon[static_cast<std::size_t>(j * found / keep)];
+    ContactGeometry& m = out[count];
+    m = ContactGeometry{};
+    m.normal = c.normal;
+    m.gap = c.normal.dot(x - origin);
+    m.point_b = x;
+    m.point_a = x - m.gap * m.normal;
+    m.feature = j;
     if (m.gap <= margin) ++count;
   }
   if (count > 0) return count;
@@ -324,6 +473,10 @@ int CollideFcl(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
   if (a.type == ShapeType::kBox && b.type == ShapeType::kBox) {
     return BoxBoxManifold(fcl_a, pose_a, fcl_b, pose_b, c, separation, margin, out);
   }
+  const auto polyhedral = [](const Shape& s) {
+    return s.type == ShapeType::kBox || (s.type == ShapeType::kConvexHull && s.hull);
+  };
+  if (polyhedral(a) && polyhedral(b)) return HullManifold(a, pose_a, b, pose_b, c, margin, out);
   out[0] = c;
   return 1;
 }
@@ -339,7 +492,13 @@ void RegisterFclPairs(CollisionTable* table) {
                                      {ShapeType::kEllipsoid, ShapeType::kBox},
                                      {ShapeType::kCylinder, ShapeType::kCylinder},
                                      {ShapeType::kCylinder, ShapeType::kBox},
-                                     {ShapeType::kBox, ShapeType::kBox}};
+                                     {ShapeType::kBox, ShapeType::kBox},
+                                     {ShapeType::kSphere, ShapeType::kConvexHull},
+                                     {ShapeType::kCapsule, ShapeType::kConvexHull},
+                                     {ShapeType::kEllipsoid, ShapeType::kConvexHull},
+                                     {ShapeType::kCylinder, ShapeType::kConvexHull},
+                                     {ShapeType::kBox, ShapeType::kConvexHull},
+                                     {ShapeType::kConvexHull, ShapeType::kConvexHull}};
   for (const auto& pair : kPairs) table->Register(pair[0], pair[1], &CollideFcl);
 }
 

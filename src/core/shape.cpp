@@ -12,8 +12,18 @@
 // The hemisphere term: a hemisphere of mass m_h has I = (2/5) m_h r² about a diameter of its flat
 // face and its centroid 3r/8 from that face; moved by the parallel-axis theorem to the capsule's
 // centre, l from the face: (2/5) m_h r² − m_h (3r/8)² + m_h (l + 3r/8)² = m_h (2r²/5 + l² + 3lr/4).
+//
+// A convex hull's faces (MakeConvexHull): area, centroid and outward normal from the fan of
+// triangles (p_0, p_k, p_k+1); the drilling radius of a uniform pressure, R̄ = (1/A) ∫ |x − c| dA,
+// summed over the edges (p, q) of the face: in polar coordinates about c, the triangle (c, p, q)
+// lies below the edge's line at distance d from c, and with t the coordinate along the edge from
+// the foot of c (t_p, t_q at its ends),
+//   ∫∫ ρ² dρ dψ = (d³/3) ∫ sec³ψ dψ = [F(t)]_{t_p}^{t_q},  F(t) = (d t √(d² + t²) + d³ asinh(t/d))/6
+// (the rectangle's R̄ of plane_box.h is the case of four edges).
 #include "nonsmooth_sim/core/shape.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -24,9 +34,9 @@
 namespace nonsmooth_sim {
 namespace {
 
-constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {ShapeType::kPlane,    ShapeType::kSphere,
-                                                       ShapeType::kCapsule,  ShapeType::kEllipsoid,
-                                                       ShapeType::kCylinder, ShapeType::kBox};
+constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {
+    ShapeType::kPlane,    ShapeType::kSphere, ShapeType::kCapsule,   ShapeType::kEllipsoid,
+    ShapeType::kCylinder, ShapeType::kBox,    ShapeType::kConvexHull};
 
 // "<where>: <what> = <value>: must be <allowed>"
 [[noreturn]] void Reject(const std::string& where, const std::string& what, double value,
@@ -58,6 +68,16 @@ Eigen::Matrix3d Diagonal(double xx, double yy, double zz) {
   return Eigen::Vector3d(xx, yy, zz).asDiagonal();
 }
 
+// F(t) of the edge integral (top of the file), d > 0.
+double EdgeIntegral(double d, double t) {
+  return (d * t * std::hypot(d, t) + d * d * d * std::asinh(t / d)) / 6.0;
+}
+
+[[noreturn]] void RejectHull(const std::string& reason) {
+  throw std::invalid_argument("MakeConvexHull: " + reason);
+}
+
+
 }  // namespace
 
 std::string_view ShapeTypeName(ShapeType type) {
@@ -68,6 +88,7 @@ std::string_view ShapeTypeName(ShapeType type) {
     case ShapeType::kEllipsoid: return "ellipsoid";
     case ShapeType::kCylinder: return "cylinder";
     case ShapeType::kBox: return "box";
+    case ShapeType::kConvexHull: return "convex_hull";
   }
   return "unknown";
 }
@@ -122,6 +143,102 @@ Shape Shape::Box(const Eigen::Vector3d& half_extents) {
   return shape;
 }
 
+Shape Shape::Hull(std::shared_ptr<const ConvexHull> hull) {
+  Shape shape;
+  shape.type = ShapeType::kConvexHull;
+  shape.hull = std::move(hull);
+  return shape;
+}
+
+std::shared_ptr<const ConvexHull> MakeConvexHull(std::vector<Eigen::Vector3d> vertices,
+                                                 std::vector<int> faces) {
+  auto hull = std::make_shared<ConvexHull>();
+  const int n = static_cast<int>(vertices.size());
+  if (n < 4) RejectHull(std::to_string(n) + " vertices: must be at least 4");
+  for (const Eigen::Vector3d& v : vertices) {
+    if (!v.allFinite()) RejectHull("a vertex is not finite");
+    hull->bounding_radius = std::max(hull->bounding_radius, v.norm());
+  }
+  hull->vertices = std::move(vertices);
+  hull->faces = std::move(faces);
+  const std::vector<Eigen::Vector3d>& x = hull->vertices;
+  const std::vector<int>& f = hull->faces;
+  std::size_t i = 0;
+  while (i < f.size()) {
+    const int count = f[i];
+    if (count < 3 || i + 1 + static_cast<std::size_t>(count) > f.size()) {
+      RejectHull("face " + std::to_string(hull->face_count) + ": bad vertex count");
+    }
+    for (int k = 1; k <= count; ++k) {
+      if (f[i + k] < 0 || f[i + k] >= n) RejectHull("a face index is out of range");
+    }
+    // the fan (p_0, p_k, p_k+1): area vector and centroid
+    const Eigen::Vector3d& p0 = x[f[i + 1]];
+    Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    for (int k = 2; k < count; ++k) {
+      const Eigen::Vector3d& p = x[f[i + k]];
+      const Eigen::Vector3d& q = x[f[i + k + 1]];
+      const Eigen::Vector3d a = 0.5 * (p - p0).cross(q - p0);
+      area_vector += a;
+      moment += a.norm() * (p0 + p + q) / 3.0;
+    }
+    const double area = area_vector.norm();
+    if (!(area > 0.0)) RejectHull("face " + std::to_string(hull->face_count) + ": zero area");
+    const Eigen::Vector3d c = moment / area;
+    // R̄ = (1/A) Σ_edges [F(t)]_{t_p}^{t_q}
+    double integral = 0.0;
+    for (int k = 1; k <= count; ++k) {
+      const Eigen::Vector3d& p = x[f[i + k]];
+      const Eigen::Vector3d& q = x[f[i + (k % count) + 1]];
+      const double length = (q - p).norm();
+      if (!(length > 0.0)) continue;
+      const Eigen::Vector3d e = (q - p) / length;
+      const double t_p = e.dot(p - c);
+      const Eigen::Vector3d foot = p - t_p * e;
+      const double d = (foot - c).norm();
+      if (!(d > 0.0)) continue;
+      integral += EdgeIntegral(d, t_p + length) - EdgeIntegral(d, t_p);
+    }
+    hull->face_start.push_back(static_cast<int>(i));
+    hull->face_normal.push_back(area_vector / area);
+    hull->face_centroid.push_back(c);
+    hull->face_patch_radius.push_back(integral / area);
+    ++hull->face_count;
+    i += static_cast<std::size_t>(count) + 1;
+  }
+  if (hull->face_count < 4) {
+    RejectHull(std::to_string(hull->face_count) + " faces: must be at least 4");
+  }
+  return hull;
+}
+
+int HullSupportVertex(const ConvexHull& hull, const Eigen::Vector3d& d) {
+  int best = 0;
+  double best_height = d.dot(hull.vertices[0]);
+  for (int i = 1; i < static_cast<int>(hull.vertices.size()); ++i) {
+    const double height = d.dot(hull.vertices[static_cast<std::size_t>(i)]);
+    if (height > best_height) best = i, best_height = height;
+  }
+  return best;
+}
+
+double HullVolume(const ConvexHull& hull) {
+  // Σ over the faces' fans of the tetrahedra (v_0, p_0, p_k, p_k+1)
+  const std::vector<Eigen::Vector3d>& x = hull.vertices;
+  const Eigen::Vector3d& o = x[0];
+  double six_volume = 0.0;
+  for (int face = 0; face < hull.face_count; ++face) {
+    const int start = hull.face_start[static_cast<std::size_t>(face)];
+    const int count = hull.faces[static_cast<std::size_t>(start)];
+    const Eigen::Vector3d p0 = x[hull.faces[start + 1]] - o;
+    for (int k = 2; k < count; ++k) {
+      six_volume += p0.dot((x[hull.faces[start + k]] - o).cross(x[hull.faces[start + k + 1]] - o));
+    }
+  }
+  return six_volume / 6.0;
+}
+
 double BoundingRadius(const Shape& shape) {
   switch (shape.type) {
     case ShapeType::kPlane: return std::numeric_limits<double>::infinity();
@@ -133,6 +250,8 @@ double BoundingRadius(const Shape& shape) {
     case ShapeType::kCylinder: return std::hypot(shape.radius, shape.half_length);
     // the farthest points are the corners
     case ShapeType::kBox: return shape.half_extents.norm();
+    // the farthest vertex from the shape frame's origin
+    case ShapeType::kConvexHull: return shape.hull ? shape.hull->bounding_radius : 0.0;
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -151,8 +270,19 @@ void ValidateShape(const Shape& shape, const std::string& where) {
       RequirePositive(where, "half_length", shape.half_length);
       return;
     case ShapeType::kBox: RequirePositiveAxes(where, "half_extents", shape.half_extents); return;
+    case ShapeType::kConvexHull:
+      if (!shape.hull) throw std::invalid_argument(where + ": convex_hull without its hull");
+      if (shape.hull->vertices.size() < 4 || shape.hull->face_count < 4) {
+        Reject(where, "hull vertices", static_cast<double>(shape.hull->vertices.size()),
+               "at least 4, with at least 4 faces");
+      }
+      for (const Eigen::Vector3d& v : shape.hull->vertices) {
+        if (!v.allFinite()) throw std::invalid_argument(where + ": a hull vertex is not finite");
+      }
+      RequirePositive(where, "hull bounding radius", shape.hull->bounding_radius);
+      return;
   }
-  Reject(where, "type", static_cast<int>(shape.type), "a ShapeType (0 to 5)");
+  Reject(where, "type", static_cast<int>(shape.type), "a ShapeType (0 to 6)");
 }
 
 double ShapeVolume(const Shape& shape) {
@@ -166,6 +296,9 @@ double ShapeVolume(const Shape& shape) {
     case ShapeType::kEllipsoid: return 4.0 / 3.0 * kPi * h.prod();
     case ShapeType::kCylinder: return 2.0 * kPi * r * r * l;
     case ShapeType::kBox: return 8.0 * h.prod();
+    case ShapeType::kConvexHull:
+      if (!shape.hull) throw std::invalid_argument("ShapeVolume: convex_hull without its hull");
+      return HullVolume(*shape.hull);
   }
   throw std::invalid_argument("ShapeVolume: unknown shape type");
 }
@@ -203,6 +336,10 @@ Eigen::Matrix3d ShapeUnitInertia(const Shape& shape) {
       return Diagonal(m * (h2.y() + h2.z()) / 3.0, m * (h2.x() + h2.z()) / 3.0,
                       m * (h2.x() + h2.y()) / 3.0);
     }
+    case ShapeType::kConvexHull:
+      throw std::invalid_argument(
+          "ShapeUnitInertia: not defined for a convex hull (its body's inertia is its URDF "
+          "<inertial>)");
   }
   throw std::invalid_argument("ShapeUnitInertia: unknown shape type");
 }

@@ -5,6 +5,7 @@
 #include "nonsmooth_sim/world/model_registry.h"
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 namespace nonsmooth_sim::node {
@@ -216,6 +217,9 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   r.String("urdf_file", &p.urdf_file);
   if (!p.urdf_file.empty()) {
     p.urdf_xml = ReadFile(p.urdf_file, p.scene.max_bytes);
+    // relative <mesh filename>s from the URDF file's folder, as simulate reads them
+    p.scene.mesh_directory = std::filesystem::path(p.urdf_file).parent_path().string();
+    if (p.scene.mesh_directory.empty()) p.scene.mesh_directory = ".";
   } else if (!nh.getParam("robot_description", p.urdf_xml)) {
     throw std::invalid_argument(
         "no URDF: set the robot_description parameter (a string) or ~urdf_file");

@@ -10,11 +10,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
+#include <memory>
 
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/format.h"
+#include "nonsmooth_sim/scene_io/mesh_source.h"
 #include "nonsmooth_sim/scene_io/urdf_xml.h"
 
 namespace nonsmooth_sim::scene_io {
@@ -517,11 +521,13 @@ class Builder {
             collider.shape = Shape::Box(0.5 * ToEigen(size));
             break;
           }
+          case urdf::Geometry::MESH: {
+            const auto& mesh = static_cast<const urdf::Mesh&>(*collision->geometry);
+            collider.shape = Shape::Hull(MeshHull(mesh, label));
+            break;
+          }
           default:
-            result_.warnings.push_back(
-                "urdf: " + label +
-                ": meshes are not supported (use sphere, box, cylinder, or an ellipsoid or "
-                "capsule from <nonsmooth_sim>), skipped");
+            result_.warnings.push_back("urdf: " + label + ": unknown geometry type, skipped");
             continue;
         }
       }
@@ -559,6 +565,24 @@ class Builder {
                       Format(collider.law.rbar) + " m (R = " + Format(radius) + " m, mu_tau = " +
                       Format(surface.torsional_coefficient) + ", mu = " + Format(surface.mu) +
                       ") must be at most " + Format(kMaxLength) + " m");
+    }
+  }
+
+  // The convex hull of a <mesh> (mesh_source.h); one line naming the collision and the file if
+  // it cannot be one.
+  std::shared_ptr<const ConvexHull> MeshHull(const urdf::Mesh& mesh, const std::string& label) {
+    std::string path;
+    try {
+      const char* environment = std::getenv("ROS_PACKAGE_PATH");
+      path = ResolveMeshFilename(
+          mesh.filename, options_.mesh_directory,
+          options_.ros_package_path.value_or(environment != nullptr ? environment : ""));
+      return LoadMeshHull(path, ToEigen(mesh.scale), options_.max_hull_vertices,
+                          options_.max_bytes);
+    } catch (const std::invalid_argument& e) {
+      throw UrdfError("urdf: " + label + ": mesh " + Quoted(mesh.filename) +
+                      (path.empty() || path == mesh.filename ? "" : " (" + path + ")") + ": " +
+                      e.what());
     }
   }
 
@@ -649,6 +673,11 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
   if (!IsFrictionSet(options.friction_set)) {
     throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());
   }
+  if (options.max_hull_vertices < 4 || options.max_hull_vertices > kMaxHullVerticesBound) {
+    throw std::invalid_argument("max_hull_vertices = " +
+                                std::to_string(options.max_hull_vertices) + ": must be in [4, " +
+                                std::to_string(kMaxHullVerticesBound) + "]");
+  }
 }
 
 UrdfScene SceneFromUrdf(const std::string& urdf_xml, const UrdfSceneOptions& options) {
@@ -687,6 +716,13 @@ UrdfScene LoadUrdfFile(const std::string& path, const UrdfSceneOptions& options)
     throw UrdfError("urdf: " + path + ": " + e.what());
   }
   try {
+    if (options.mesh_directory.empty()) {
+      // relative mesh paths: from the URDF file's folder
+      UrdfSceneOptions with_folder = options;
+      with_folder.mesh_directory = std::filesystem::path(path).parent_path().string();
+      if (with_folder.mesh_directory.empty()) with_folder.mesh_directory = ".";
+      return SceneFromUrdf(text, with_folder);
+    }
     return SceneFromUrdf(text, options);
   } catch (const UrdfError& e) {
     // "urdf: <reason>" → "urdf: <path>: <reason>"

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <memory>
 #include <utility>
+#include <vector>
 
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/core/constants.h"
@@ -67,8 +69,27 @@ inline Shape RandomShape(ShapeType type, std::mt19937& rng, double lo = 0.05, do
     case ShapeType::kEllipsoid: return Shape::Ellipsoid({length(), length(), length()});
     case ShapeType::kCylinder: return Shape::Cylinder(length(), length());
     case ShapeType::kBox: return Shape::Box({length(), length(), length()});
+    case ShapeType::kConvexHull: break;  // hulls are written by their tests (plane_hull)
   }
   return Shape::Sphere(lo);
+}
+
+/// The box |x − c| ≤ h as a convex hull: corners i (bit j of i: +h_j), faces counter-clockwise
+/// from outside.
+inline std::shared_ptr<const ConvexHull> BoxHull(
+    const Eigen::Vector3d& h, const Eigen::Vector3d& c = Eigen::Vector3d::Zero()) {
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i) {
+    v.push_back(c + Eigen::Vector3d((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
+                                    (i & 4) ? h.z() : -h.z()));
+  }
+  const std::vector<int> faces = {4, 0, 2, 3, 1,   // −z
+                                  4, 4, 5, 7, 6,   // +z
+                                  4, 0, 4, 6, 2,   // −x
+                                  4, 1, 3, 7, 5,   // +x
+                                  4, 0, 1, 5, 4,   // −y
+                                  4, 2, 6, 7, 3};  // +y
+  return MakeConvexHull(v, faces);
 }
 
 /// The point of the (solid, bounded) shape maximising d·x, world (d ≠ 0, world). Textbook support
@@ -99,6 +120,14 @@ inline Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose
     case ShapeType::kBox:
       for (int j = 0; j < 3; ++j) x[j] = sign(d[j]) * shape.half_extents[j];
       break;
+    case ShapeType::kConvexHull: {
+      // the vertex maximising d·v, by enumeration
+      double best = -kInf;
+      for (const Eigen::Vector3d& v : shape.hull->vertices) {
+        if (d.dot(v) > best) best = d.dot(v), x = v;
+      }
+      break;
+    }
   }
   return pose * x;
 }
@@ -127,6 +156,15 @@ inline double SurfaceResidual(const Shape& shape, const Eigen::Isometry3d& pose,
     case ShapeType::kCylinder:
       return std::max(std::hypot(y.x(), y.y()) - shape.radius, std::abs(y.z()) - shape.half_length);
     case ShapeType::kBox: return (y.cwiseAbs() - shape.half_extents).maxCoeff();
+    case ShapeType::kConvexHull: {
+      // the largest height above a face's plane
+      double residual = -kInf;
+      for (int f = 0; f < shape.hull->face_count; ++f) {
+        const ConvexHull& hull = *shape.hull;
+        residual = std::max(residual, hull.face_normal[f].dot(y - hull.face_centroid[f]));
+      }
+      return residual;
+    }
   }
   return kInf;
 }

@@ -245,15 +245,13 @@ TEST(NodeBadUrdf, OverlapsAtTheStartAreAWarningWithTheDepth) {
       << all;
 }
 
-// A body whose only collision is skipped (a mesh) starts and falls for ever: the node warns once
+// A body without any collision starts and falls for ever: the node warns once
 // that it never touches anything, and /diagnostics says so (WARN) while it runs.
 TEST(NodeBadUrdf, ABodyThatCanTouchNothingIsAWarningInTheLogAndInDiagnostics) {
   const std::string path = ::testing::TempDir() + "/node_bad_urdf_test_mesh_top.urdf";
   std::ofstream(path) << "<robot name=\"r\"><link name=\"top\"><inertial><mass value=\"0.1\"/>"
                          "<inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" "
-                         "izz=\"1e-4\"/></inertial><collision name=\"hull\"><geometry>"
-                         "<mesh filename=\"package://x/top.stl\"/></geometry></collision></link>"
-                         "</robot>";
+                         "izz=\"1e-4\"/></inertial></link></robot>";
   ros::NodeHandle nh;
   std::mutex mutex;
   std::string summary;  // the WARN's message, once one came (under mutex)

@@ -1,7 +1,9 @@
 // The scene loader and the world build without ROS: every #include in include/nonsmooth_sim/scene_io
-// and src/scene_io names a standard or Eigen header, the core, the loader itself, or one of the
-// four plain libraries it uses (urdfdom's parser, console_bridge, TinyXML2, yaml-cpp), or POSIX's
-// file calls (fcntl.h, sys/stat.h, unistd.h); every #include in include/nonsmooth_sim/world and
+// and src/scene_io names a standard or Eigen header, the core, the mesh library, the loader
+// itself, or one of the four plain libraries it uses (urdfdom's parser, console_bridge, TinyXML2,
+// yaml-cpp), or POSIX's file calls (fcntl.h, sys/stat.h, unistd.h); every #include in
+// include/nonsmooth_sim/mesh and src/mesh a standard or Eigen header, the core, the mesh library,
+// assimp or qhull; every #include in include/nonsmooth_sim/world and
 // src/world a standard or Eigen header, the core, the loader or the world. roscpp, the ROS urdf
 // package (<urdf/model.h>) or the node's headers fail this test.
 #include <gtest/gtest.h>
@@ -14,7 +16,8 @@ namespace nonsmooth_sim::test {
 namespace {
 
 bool IsAllowed(const std::string& header) {
-  if (StartsWithOneOf(header, {"Eigen/", "nonsmooth_sim/core/", "nonsmooth_sim/scene_io/"})) {
+  if (StartsWithOneOf(header, {"Eigen/", "nonsmooth_sim/core/", "nonsmooth_sim/mesh/",
+                               "nonsmooth_sim/scene_io/"})) {
     return true;
   }
   // and POSIX for files that must be regular before they are opened (bounded_input.cpp)
@@ -24,6 +27,13 @@ bool IsAllowed(const std::string& header) {
     if (header == library) return true;
   }
   return IsStandardHeader(header);
+}
+
+// the mesh library: standard, Eigen, the core, itself, assimp and qhull
+bool IsAllowedInMesh(const std::string& header) {
+  return StartsWithOneOf(header, {"Eigen/", "nonsmooth_sim/core/", "nonsmooth_sim/mesh/",
+                                  "assimp/", "libqhull_r/"}) ||
+         IsStandardHeader(header);
 }
 
 // the world: standard, Eigen, the core, the loader and itself only (no third-party library)
@@ -39,6 +49,15 @@ TEST(SceneIoIsRosFree, EveryIncludeIsStandardEigenCoreOrAPlainLibrary) {
   ASSERT_GE(scan.files, 6u) << "scene_io sources not found under " << NONSMOOTH_SIM_SOURCE_DIR;
   EXPECT_GT(scan.includes, 0);
   for (const std::string& f : scan.forbidden) ADD_FAILURE() << f;
+}
+
+TEST(MeshIsRosFree, EveryIncludeIsStandardEigenCoreAssimpOrQhull) {
+  const IncludeScan scan = ScanIncludes({"include/nonsmooth_sim/mesh", "src/mesh"}, IsAllowedInMesh);
+  ASSERT_GE(scan.files, 2u) << "mesh sources not found under " << NONSMOOTH_SIM_SOURCE_DIR;
+  EXPECT_GT(scan.includes, 0);
+  for (const std::string& f : scan.forbidden) ADD_FAILURE() << f;
+  EXPECT_FALSE(IsAllowedInMesh("ros/ros.h"));
+  EXPECT_FALSE(IsAllowedInMesh("resource_retriever/retriever.h"));
 }
 
 TEST(WorldIsRosFree, EveryIncludeIsStandardEigenCoreLoaderOrWorld) {

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """simulate never loses a body silently (docs/simulate.md, "Lost bodies"): a body whose only
-collision is skipped (a mesh) warns once, at t = 0, that it never touches anything, and the JSON
+has no collision at all warns once, at t = 0, that it never touches anything, and the JSON
 summary lists it under "lost_bodies"; a scene whose bodies all keep their collisions lists none.
 
   simulate_lost_bodies_test.py <simulate executable> <source dir>
@@ -15,11 +15,10 @@ import unittest
 SIMULATE = sys.argv[1] if len(sys.argv) > 1 else "build-release/devel/lib/nonsmooth_sim/simulate"
 SOURCE = sys.argv[2] if len(sys.argv) > 2 else "."
 
-# a top whose collision is a mesh, which the loader skips (with its own warning)
+# a top with a mass and no collision at all
 MESH_TOP = """<robot name="r"><link name="top"><inertial><origin xyz="0 0 0.1"/>
 <mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
-<collision name="hull"><origin xyz="0 0 0.1"/>
-<geometry><mesh filename="package://x/top.stl"/></geometry></collision></link></robot>
+</link></robot>
 """
 
 

@@ -1,7 +1,9 @@
 // Narrow phase by FCL (the Flexible Collision Library 0.7, as MoveIt uses it) for the pairs of
 // non-plane shapes that have no closed form in the core: sphere–ellipsoid, sphere–cylinder,
 // capsule–ellipsoid, capsule–cylinder, capsule–box, ellipsoid–ellipsoid, ellipsoid–cylinder,
-// ellipsoid–box, cylinder–cylinder, cylinder–box, box–box. A separate library: the core stays
+// ellipsoid–box, cylinder–cylinder, cylinder–box, box–box, and a convex hull (a mesh's, shape.h)
+// against every shape but the plane (fcl::Convex over the hull's vertices and faces; the
+// refinement below also starts from the hull's face normals). A separate library: the core stays
 // Eigen-only.
 //
 // CollideFcl() maps FCL's answers onto ContactGeometry (collision.h). FCL's contact normal points
@@ -32,6 +34,11 @@
 //  - Box–box separated within the margin or touching: FCL's clipping with B moved into A by ε
 //    along n, moved back, so that a box resting on a box has its four corners as contacts before
 //    it touches as after (BoxBoxManifold in fcl_pairs.cpp).
+//  - A hull against a hull or a box, separated within the margin or penetrating, with a face of
+//    each along the contact's normal n (within 1e-3 rad): face to face, one point would let a
+//    body resting on the other rock about it. B's face is clipped against A's (Sutherland–
+//    Hodgman in A's face plane) and each corner of the overlap is a contact, its gap its height
+//    above A's face along n, at most kMaxPairContacts (HullManifold in fcl_pairs.cpp).
 // ε = kFclRefinementSeparation × the smaller bounding radius. Accuracy, measured in
 // test/collision_fcl against the closed forms and the support functions: gaps and consistency
 // (|PG(n) − gap|) to ~1e-11 m; where both shapes have edges or rims (cylinder–box, cylinder–
@@ -43,7 +50,9 @@
 // Unlike the closed forms, CollideFcl allocates (FCL's result vectors, GJK's and MPR's work
 // space) and costs 0.4–80 µs a call against 5–45 ns for the closed forms
 // (bench/collision_bench.cpp: FCL's GJK takes ~10 µs a call on curved shapes near contact, and a
-// refinement makes 2–6). It does not throw and reads no global state but FCL's dispatch tables.
+// refinement makes 2–6). It does not throw and reads no global state but FCL's dispatch tables
+// and, for a hull, a per-thread cache of its fcl::Convex (built once per hull: its vertex
+// adjacency).
 #ifndef NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 #define NONSMOOTH_SIM_COLLISION_FCL_FCL_PAIRS_H_
 

@@ -19,7 +19,13 @@
 // Colliders:
 //  - <collision> geometry <sphere radius>, <cylinder radius length> (axis z, half_length =
 //    length/2), <box size> (half_extents = size/2); the pose is the collision <origin> in K (the
-//    link frame shifted to S, link axes) or in the world. <mesh>: reported and skipped.
+//    link frame shifted to S, link axes) or in the world. <mesh filename scale>: the convex hull
+//    of its vertices (mesh_source.h: package://, file:// and paths; STL, OBJ, DAE; at most
+//    options.max_hull_vertices vertices), a convex_hull shape; the body's mass and inertia stay
+//    its <inertial>. A mesh that cannot be a hull (missing, empty, a device, FIFO or directory,
+//    larger than options.max_bytes, unreadable, flat, scale out of [kMinMeshScale,
+//    kMaxMeshScale], a package:// path leaving its package) throws UrdfError naming the link's
+//    collision and the file.
 //  - <nonsmooth_sim reference="link"><collision name="c"><ellipsoid semi_axes="a b c"/> |
 //    <capsule radius="r" length="l"/> | <plane/></collision></nonsmooth_sim> replaces the URDF
 //    geometry of the link's collision "c" (l = segment between the cap centres, along z; the plane
@@ -134,6 +140,15 @@ struct UrdfSceneOptions {
   /// [bytes] of the URDF text or file, at most this (refused before parsing; bounded_input.h);
   /// in [1, kMaxInputBytesOption]
   std::size_t max_bytes = kMaxInputBytes;
+  /// the folder of <mesh filename>s given as relative paths; empty: LoadUrdfFile uses the URDF
+  /// file's folder, SceneFromUrdf the current folder
+  std::string mesh_directory;
+  /// where package:// meshes are searched (mesh_source.h); unset: the environment's
+  /// ROS_PACKAGE_PATH
+  std::optional<std::string> ros_package_path;
+  /// vertices of a mesh's convex hull, at most (as MuJoCo's maxhullvert), in
+  /// [4, kMaxHullVerticesBound]
+  int max_hull_vertices = kDefaultMaxHullVertices;
   /// the pair functions of the scene (its Scene::collision_table): the core's closed forms, or
   /// with RegisterFclPairs (collision_fcl/fcl_pairs.h) also the convex pairs without one
   CollisionTable collision_table = CollisionTable::Defaults();

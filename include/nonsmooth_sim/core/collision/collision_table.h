@@ -22,7 +22,8 @@ class CollisionTable {
   /// An empty table: no pair has a function.
   CollisionTable() = default;
 
-  /// The core's closed forms: plane against sphere, capsule, ellipsoid, cylinder and box; sphere
+  /// The core's closed forms: plane against sphere, capsule, ellipsoid, cylinder, box and convex
+  /// hull; sphere
   /// against sphere, capsule and box; capsule against capsule.
   static CollisionTable Defaults();
 
