@@ -6,7 +6,7 @@
 #   scene_yaml_fuzz         bytes = initial-state YAML applied to shipped scenes, a few steps
 #   service_sequence_fuzz   bytes -> a sequence of the node's service requests against a Simulator
 #
-# The fuzzed code (core, scene loader, FCL pairs and the ROS-free world of world/) is
+# The fuzzed code (core, mesh hulls, scene loader, FCL pairs and the ROS-free world of world/) is
 # compiled once more here into an instrumented library of its own (coverage for libFuzzer,
 # AddressSanitizer, LeakSanitizer, UBSan; assertions on), so the regular libraries and every other
 # target stay exactly as without the option. Included last from CMakeLists.txt (the source lists
@@ -26,6 +26,7 @@ if(NONSMOOTH_SIM_FUZZ)
 
   add_library(nonsmooth_sim_fuzz_instrumented STATIC EXCLUDE_FROM_ALL
     ${NONSMOOTH_SIM_CORE_SOURCES}
+    ${NONSMOOTH_SIM_MESH_SOURCES}
     ${NONSMOOTH_SIM_SCENE_IO_SOURCES}
     ${NONSMOOTH_SIM_COLLISION_FCL_SOURCES}
     ${NONSMOOTH_SIM_WORLD_SOURCES})  # ROS-free: the world the node serves
@@ -34,7 +35,7 @@ if(NONSMOOTH_SIM_FUZZ)
     -fsanitize=fuzzer-no-link ${NONSMOOTH_SIM_FUZZ_COMPILE})
   target_link_libraries(nonsmooth_sim_fuzz_instrumented
     PUBLIC Eigen3::Eigen fcl
-    PRIVATE urdfdom::urdfdom_model tinyxml2::tinyxml2 yaml-cpp)
+    PRIVATE urdfdom::urdfdom_model tinyxml2::tinyxml2 yaml-cpp assimp::assimp Qhull::qhull_r)
 
   add_custom_target(fuzz)
   foreach(name urdf_loader_fuzz scene_yaml_fuzz service_sequence_fuzz)
