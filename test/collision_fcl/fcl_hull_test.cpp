@@ -16,16 +16,12 @@
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/simulator.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-// "1.23e-10": a measured value for RecordProperty.
-std::string Scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
+using test::Scientific;
 
 using namespace collision_test;  // NOLINT
 

@@ -20,16 +20,12 @@
 #include "nonsmooth_sim/core/collision/plane_hull.h"
 #include "nonsmooth_sim/core/simulator.h"
 #include "scene_builders.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-// "1.23e-10": a measured value for RecordProperty.
-std::string Scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
+using test::Scientific;
 
 using namespace collision_test;  // NOLINT
 

@@ -37,6 +37,7 @@
 #include "brute_force_projection.h"
 #include "nonsmooth_sim/core/constants.h"
 #include "nonsmooth_sim/core/force_sets.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim::force_sets_support {
 
@@ -221,11 +222,7 @@ inline std::vector<Sample> MakeSamples(const SetUnderTest& set, std::uint64_t se
 }
 
 // For RecordProperty: the measured worst errors end up in the test XML.
-inline std::string Scientific(double value) {
-  std::ostringstream out;
-  out << std::scientific << std::setprecision(2) << value;
-  return out.str();
-}
+using test::Scientific;
 
 // Per-axis distance of two results: max(tangential / s, drilling / (k s)).
 inline double AxisError(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius,

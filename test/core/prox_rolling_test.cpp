@@ -24,15 +24,12 @@
 #include <vector>
 
 #include "brute_force_projection.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-std::string Scientific(double value) {
-  std::ostringstream out;
-  out << std::setprecision(6) << value;
-  return out.str();
-}
+using test::Scientific;
 
 constexpr std::uint64_t kSeed = 0x7011ed;
 constexpr int kSamples = 300;

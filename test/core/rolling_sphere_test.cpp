@@ -26,15 +26,12 @@
 #include "nonsmooth_sim/core/contact/contact_frame.h"
 #include "nonsmooth_sim/core/contact/contact_jacobian.h"
 #include "nonsmooth_sim/core/friction_law.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim {
 namespace {
 
-std::string Scientific(double value) {
-  std::ostringstream out;
-  out << std::setprecision(6) << value;
-  return out.str();
-}
+using test::Scientific;
 
 using Matrix5d = Eigen::Matrix<double, 5, 5>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;

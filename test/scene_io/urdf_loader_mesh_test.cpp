@@ -15,16 +15,12 @@
 #include "nonsmooth_sim/scene_io/mesh_source.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
 #include "urdf_fixtures.h"
+#include "../measured_value.h"
 
 namespace nonsmooth_sim::scene_io {
 namespace {
 
-// "1.23e-10": a measured value for RecordProperty.
-std::string Scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
+using test::Scientific;
 
 using namespace urdf_test;  // NOLINT
 using namespace mesh_test;  // NOLINT
