@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../core/collision_test_util.h"
+#include "../core/scene_builders.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/simulator.h"
@@ -158,24 +159,14 @@ TEST(FclHull, AHullDieRestsOnABoxOrHullTableAsTheBoxDie) {
   const Eigen::Vector3d h(0.1, 0.07, 0.05);
   const Eigen::Vector3d slab(1.0, 1.0, 0.1);
   for (const Shape& table : {Shape::Box(slab), Shape::Hull(BoxHull(slab))}) {
-    Scene scene;
-    RigidBody die;
-    die.name = "die";
-    die.mass = 0.5;
-    die.inertia = ShapeUnitInertia(Shape::Box(h)) * (die.mass / ShapeVolume(Shape::Box(h)));
-    scene.bodies = {die};
-    Collider collider;
-    collider.name = "die";
-    collider.body = 0;
-    collider.shape = Shape::Hull(BoxHull(h));
-    collider.law.mu = 0.5;
-    collider.law.friction_set = FrictionSet::kCoulomb;
-    Collider top = collider;
+    Scene scene =
+        test::BoxBodyScene("die", h, Shape::Hull(BoxHull(h)), /*mass=*/0.5, /*mu=*/0.5);
+    Collider top = scene.colliders[0];
     top.name = "table";
     top.body = kWorld;
     top.shape = table;
     top.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.1);
-    scene.colliders = {collider, top};
+    scene.colliders.push_back(top);
     BodyState start;
     start.position = Eigen::Vector3d(0.05, 0.02, h.z());
     scene.initial_state = {start};

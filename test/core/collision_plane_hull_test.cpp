@@ -210,19 +210,8 @@ TEST(PlaneHull, ABoxHullTouchesAsTheBoxOnEachFaceTiltedAndAtRandomPoses) {
 
 // A box of half extents h as a body resting on the ground; `as_hull`: its collider a hull.
 Scene BoxScene(const Eigen::Vector3d& h, bool as_hull, const BodyState& start) {
-  Scene scene;
-  RigidBody box;
-  box.name = "box";
-  box.mass = 0.5;
-  box.inertia = ShapeUnitInertia(Shape::Box(h)) * (box.mass / ShapeVolume(Shape::Box(h)));
-  scene.bodies = {box};
-  Collider collider;
-  collider.name = "box";
-  collider.body = 0;
-  collider.shape = as_hull ? Shape::Hull(BoxHull(h)) : Shape::Box(h);
-  collider.law.mu = 0.4;
-  collider.law.friction_set = FrictionSet::kCoulomb;
-  scene.colliders = {collider};
+  Scene scene = test::BoxBodyScene(
+      "box", h, as_hull ? Shape::Hull(BoxHull(h)) : Shape::Box(h), /*mass=*/0.5, /*mu=*/0.4);
   test::AddGround(&scene);
   scene.initial_state = {start};
   return scene;

@@ -32,6 +32,27 @@ inline Collider SphereCollider(const std::string& name, int body, const Eigen::V
   return collider;
 }
 
+/// A scene of one body named `name`: mass `mass` with the inertia of a uniform box of half extents
+/// `h`, and one collider `shape` (the box itself, or its hull) at its centre of mass with μ = `mu`
+/// and the Coulomb set; no static collider, no initial state.
+inline Scene BoxBodyScene(const std::string& name, const Eigen::Vector3d& h, const Shape& shape,
+                          double mass, double mu) {
+  Scene scene;
+  RigidBody body;
+  body.name = name;
+  body.mass = mass;
+  body.inertia = ShapeUnitInertia(Shape::Box(h)) * (mass / ShapeVolume(Shape::Box(h)));
+  scene.bodies = {body};
+  Collider collider;
+  collider.name = name;
+  collider.body = 0;
+  collider.shape = shape;
+  collider.law.mu = mu;
+  collider.law.friction_set = FrictionSet::kCoulomb;
+  scene.colliders = {collider};
+  return scene;
+}
+
 /// Appends the ground plane z = 0 with GroundLaw() (μ = 100, R̄ = 0, ε = 0: the body's law
 /// decides). Last, so that the contacts of the spheres keep their order.
 inline void AddGround(Scene* scene) { scene->colliders.push_back(GroundPlane()); }
