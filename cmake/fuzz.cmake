@@ -22,7 +22,7 @@ if(NONSMOOTH_SIM_FUZZ)
   # keeps Eigen's index and size assertions
   set(NONSMOOTH_SIM_FUZZ_SANITIZERS
       -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
-  set(NONSMOOTH_SIM_FUZZ_COMPILE ${NONSMOOTH_SIM_FUZZ_SANITIZERS} -g -UNDEBUG)
+  set(NONSMOOTH_SIM_FUZZ_COMPILE ${NONSMOOTH_SIM_FUZZ_SANITIZERS} -gline-tables-only -UNDEBUG)
 
   add_library(nonsmooth_sim_fuzz_instrumented STATIC EXCLUDE_FROM_ALL
     ${NONSMOOTH_SIM_CORE_SOURCES}
