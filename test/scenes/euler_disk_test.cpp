@@ -23,61 +23,25 @@
 
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 #include "nonsmooth_sim/core/constants.h"
+#include "euler_disk.h"
 #include "scene_test_support.h"
 
 namespace nonsmooth_sim {
 namespace {
 
 using scene_test::AxisE3;
+using scene_test::Disc;
+using scene_test::DiscOf;
+using scene_test::kG;
 using scene_test::LoadShippedScene;
 using scene_test::Runner;
+using scene_test::SteadyPrecessionRate;
+using scene_test::SteadyRollingState;
 using scene_test::WorldAngularVelocity;
-
-constexpr double kG = 9.81;
-
-struct Disc {
-  double a = 0.0;  // radius [m]
-  double h = 0.0;  // thickness [m]
-  double m = 0.0;  // [kg]
-  double A = 0.0;  // about a diameter through S [kg m²]
-  double C = 0.0;  // about the axis [kg m²]
-};
-
-// The geometry as modelled: read back from the loaded scene.
-Disc DiscOf(const Scene& scene) {
-  const Collider& c = scene.colliders[static_cast<std::size_t>(FindCollider(scene, "disk"))];
-  Disc d;
-  d.a = c.shape.radius;
-  d.h = 2.0 * c.shape.half_length;
-  d.m = scene.bodies[0].mass;
-  d.A = scene.bodies[0].inertia(0, 0);
-  d.C = scene.bodies[0].inertia(2, 2);
-  return d;
-}
-
-// (D1) [rad/s]
-double SteadyPrecessionRate(const Disc& d, double alpha) {
-  const double c = std::cos(alpha);
-  const double s = std::sin(alpha);
-  return std::sqrt(d.m * kG * (d.a * c - 0.5 * d.h * s) /
-                   (s * (d.A * c - d.C * d.h / (2.0 * d.a) * s)));
-}
 
 // Moffatt's thin-disc form 4g/(a sin α) [rad/s]
 double ThinDiscPrecessionRate(const Disc& d, double alpha) {
   return std::sqrt(4.0 * kG / (d.a * std::sin(alpha)));
-}
-
-// Steady rolling with S at rest at (0, 0, z_S): e3 tilted by α about the world x axis, the lowest
-// rim point touching, (D2) in the body axes: ω_K = (0, Ω sin α, Ω (h/2a) sin α).
-BodyState SteadyRollingState(const Disc& d, double alpha) {
-  BodyState s;
-  s.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
-  s.position = Eigen::Vector3d(0.0, 0.0, 0.5 * d.h * std::cos(alpha) + d.a * std::sin(alpha));
-  const double omega = SteadyPrecessionRate(d, alpha);
-  s.angular_velocity = Eigen::Vector3d(0.0, omega * std::sin(alpha),
-                                       omega * d.h / (2.0 * d.a) * std::sin(alpha));
-  return s;
 }
 
 // Precession rate Ω and mean inclination over windows of the run: Ω = Δφ/Δt of the azimuth φ of
