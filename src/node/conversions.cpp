@@ -311,15 +311,18 @@ void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time
                  visualization_msgs::MarkerArray* msg) {
   const std::vector<ContactState>& contacts = sim.contacts();
   const std::size_t n = std::max(contacts.size(), previous_count);
-  msg->markers.resize(2 * n);
+  msg->markers.resize(kMarkersPerContact * n);
   const double dt = sim.options().time_step;
   for (std::size_t i = 0; i < n; ++i) {
-    visualization_msgs::Marker* force = &msg->markers[2 * i];
-    visualization_msgs::Marker* torque = &msg->markers[2 * i + 1];
+    visualization_msgs::Marker* force = &msg->markers[kMarkersPerContact * i];
+    visualization_msgs::Marker* torque = force + 1;
+    visualization_msgs::Marker* rolling = force + 2;
+    const int id = static_cast<int>(i);
     if (i >= contacts.size()) {
       // a marker of the last message that has no contact now
-      Delete(frames.world, stamp, "contact_force", static_cast<int>(i), force);
-      Delete(frames.world, stamp, "drilling_torque", static_cast<int>(i), torque);
+      Delete(frames.world, stamp, "contact_force", id, force);
+      Delete(frames.world, stamp, "drilling_torque", id, torque);
+      Delete(frames.world, stamp, "rolling_torque", id, rolling);
       continue;
     }
     const ContactState& c = contacts[i];
@@ -327,11 +330,21 @@ void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time
         (c.percussion[0] * c.frame.normal + c.percussion[1] * c.frame.tangent1 +
          c.percussion[2] * c.frame.tangent2) /
         dt;
-    Arrow(frames.world, stamp, "contact_force", static_cast<int>(i), c.point,
-          c.point + force_scale * f, 1.0f, 0.55f, 0.0f, force);
-    Arrow(frames.world, stamp, "drilling_torque", static_cast<int>(i), c.point,
+    Arrow(frames.world, stamp, "contact_force", id, c.point, c.point + force_scale * f, 1.0f,
+          0.55f, 0.0f, force);
+    Arrow(frames.world, stamp, "drilling_torque", id, c.point,
           c.point + torque_scale * (c.percussion[3] / dt) * c.frame.normal, 0.1f, 0.4f, 1.0f,
           torque);
+    if (c.dimension == 6) {
+      // the rolling torque Λ_R/Δt about t1, t2: an arrow in the tangent plane
+      const Eigen::Vector3d tau = (c.rolling_percussion[0] * c.frame.tangent1 +
+                                   c.rolling_percussion[1] * c.frame.tangent2) /
+                                  dt;
+      Arrow(frames.world, stamp, "rolling_torque", id, c.point, c.point + torque_scale * tau,
+            0.1f, 0.75f, 0.2f, rolling);
+    } else {
+      Delete(frames.world, stamp, "rolling_torque", id, rolling);
+    }
   }
 }
 

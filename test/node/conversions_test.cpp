@@ -289,6 +289,19 @@ TEST(Conversions, ARollingContactCarriesItsRollingTorque) {
   // in the contact frame's axes (t1, t2, n): the rolling torque about x and y, drilling about z
   EXPECT_NEAR(wrench.wrench.torque.x, c.rolling_percussion[0] / dt, 1e-12);
   EXPECT_NEAR(wrench.wrench.torque.y, c.rolling_percussion[1] / dt, 1e-12);
+  // the rolling arrow: Λ_R/Δt in the tangent plane, scaled as the drilling arrow
+  visualization_msgs::MarkerArray markers;
+  FillMarkers(rolling, frames, StampOf(rolling.time()), 0.5, 1000.0, 0, &markers);
+  ASSERT_EQ(markers.markers.size(), kMarkersPerContact);
+  const visualization_msgs::Marker& arrow = markers.markers[2];
+  EXPECT_EQ(arrow.ns, "rolling_torque");
+  EXPECT_EQ(arrow.action, visualization_msgs::Marker::ADD);
+  ASSERT_EQ(arrow.points.size(), 2u);
+  const Eigen::Vector3d tau = (c.rolling_percussion[0] * c.frame.tangent1 +
+                               c.rolling_percussion[1] * c.frame.tangent2) /
+                              dt;
+  EXPECT_LT((ToEigen(arrow.points[1]) - ToEigen(arrow.points[0]) - 1000.0 * tau).norm(), 1e-12);
+  EXPECT_GT(tau.norm(), 0.0);
   // without rolling resistance the fields are zero
   const Simulator stack = SphereStack(20);
   ContactInfoArray plain;
@@ -426,7 +439,7 @@ TEST(Conversions, MarkersDrawClosedContactsAndDeleteOpenOnes) {
   visualization_msgs::MarkerArray markers;
   // the previous message drew two contacts (say, both spheres): id 1 is deleted now
   FillMarkers(sim, frames, StampOf(sim.time()), 0.5, 1000.0, 2, &markers);
-  ASSERT_EQ(markers.markers.size(), 4u);
+  ASSERT_EQ(markers.markers.size(), 2 * kMarkersPerContact);
   const visualization_msgs::Marker& force = markers.markers[0];
   EXPECT_EQ(force.action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(force.ns, "contact_force");
@@ -442,15 +455,19 @@ TEST(Conversions, MarkersDrawClosedContactsAndDeleteOpenOnes) {
   EXPECT_EQ(torque.action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(torque.ns, "drilling_torque");
   EXPECT_EQ(torque.id, 0);
-  for (int k = 2; k < 4; ++k) {
+  // the sphere set has no rolling components: its rolling arrow is deleted
+  EXPECT_EQ(markers.markers[2].ns, "rolling_torque");
+  EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::DELETE);
+  for (std::size_t k = kMarkersPerContact; k < 2 * kMarkersPerContact; ++k) {
     EXPECT_EQ(markers.markers[k].action, visualization_msgs::Marker::DELETE) << k;
     EXPECT_EQ(markers.markers[k].id, 1) << k;
   }
-  EXPECT_EQ(markers.markers[2].ns, "contact_force");
-  EXPECT_EQ(markers.markers[3].ns, "drilling_torque");
+  EXPECT_EQ(markers.markers[3].ns, "contact_force");
+  EXPECT_EQ(markers.markers[4].ns, "drilling_torque");
+  EXPECT_EQ(markers.markers[5].ns, "rolling_torque");
   // nothing drawn before: only the one contact's arrows (the reused message shrinks)
   FillMarkers(sim, frames, StampOf(sim.time()), 0.5, 1000.0, 0, &markers);
-  ASSERT_EQ(markers.markers.size(), 2u);
+  ASSERT_EQ(markers.markers.size(), kMarkersPerContact);
   EXPECT_EQ(markers.markers[0].action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(markers.markers[1].action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(DeleteAllMarkers("world").markers.at(0).action,

@@ -75,10 +75,14 @@ std::vector<geometry_msgs::TransformStamped> FixedLinkTransforms(
 bool FillWrench(const Simulator& sim, std::size_t slot, const FrameNames& frames,
                 const ros::Time& stamp, geometry_msgs::WrenchStamped* msg);
 
-/// Arrows in the world frame: per closed contact i the force (namespace "contact_force", id i,
-/// tail at the contact point) and the drilling torque (namespace "drilling_torque", along the
-/// normal); DELETE for the ids up to previous_count that have no contact now. Lengths:
-/// force_scale [m/N], torque_scale [m/(N m)].
+/// Markers per contact in FillMarkers' message: force, drilling torque, rolling torque.
+inline constexpr std::size_t kMarkersPerContact = 3;
+
+/// Arrows in the world frame, kMarkersPerContact per closed contact i, tails at the contact
+/// point: the force (namespace "contact_force", id i), the drilling torque (namespace
+/// "drilling_torque", along the normal) and the rolling torque (namespace "rolling_torque", in the
+/// tangent plane; DELETE for a contact without rolling components); DELETE for the ids up to
+/// previous_count that have no contact now. Lengths: force_scale [m/N], torque_scale [m/(N m)].
 void FillMarkers(const Simulator& sim, const FrameNames& frames, const ros::Time& stamp,
                  double force_scale, double torque_scale, std::size_t previous_count,
                  visualization_msgs::MarkerArray* msg);
