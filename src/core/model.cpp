@@ -38,13 +38,4 @@ void Model::BuildCaches() {
   }
 }
 
-ContactLaw Model::PairLaw(int first, int second) const {
-  ContactLaw law = CombineLaws(scene.colliders[static_cast<std::size_t>(first)],
-                               scene.colliders[static_cast<std::size_t>(second)]);
-  for (const auto& [pair, set] : pair_sets) {  // usually empty
-    if (pair.first == first && pair.second == second) law.friction_set = set;
-  }
-  return law;
-}
-
 }  // namespace nonsmooth_sim

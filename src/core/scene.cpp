@@ -105,17 +105,6 @@ Collider GroundPlane(const ContactLaw& law) {
   return ground;
 }
 
-ContactLaw CombineLaws(const Collider& a, const Collider& b) {
-  ContactLaw law;
-  law.mu = std::min(a.law.mu, b.law.mu);
-  law.rbar = std::max(a.law.rbar, b.law.rbar);
-  law.restitution = std::max(a.law.restitution, b.law.restitution);
-  law.rolling_resistance = std::min(a.law.rolling_resistance, b.law.rolling_resistance);
-  // the set of the first collider on a body (a comes first in the scene unless it is static)
-  law.friction_set = a.body != kWorld ? a.law.friction_set : b.law.friction_set;
-  return law;
-}
-
 int FindCollider(const Scene& scene, const std::string& name) {
   for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
     if (scene.colliders[i].name == name) return static_cast<int>(i);

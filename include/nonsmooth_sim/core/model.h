@@ -54,7 +54,14 @@ struct Model {
   /// Rebuilds the derived arrays from scene (keeps pair_sets and wrench).
   void BuildCaches();
   /// The law of the collider pair (first < second) with the overrides of pair_sets.
-  ContactLaw PairLaw(int first, int second) const;
+  ContactLaw PairLaw(int first, int second) const {
+    ContactLaw law = CombineLaws(scene.colliders[static_cast<std::size_t>(first)],
+                                 scene.colliders[static_cast<std::size_t>(second)]);
+    for (const auto& [pair, set] : pair_sets) {  // usually empty
+      if (pair.first == first && pair.second == second) law.friction_set = set;
+    }
+    return law;
+  }
 };
 
 }  // namespace nonsmooth_sim

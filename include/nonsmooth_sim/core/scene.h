@@ -14,6 +14,7 @@
 #define NONSMOOTH_SIM_CORE_SCENE_H_
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
@@ -71,8 +72,18 @@ ContactLaw GroundLaw();
 /// The ground plane z = 0 (normal +z), named "ground".
 Collider GroundPlane(const ContactLaw& law = GroundLaw());
 
-/// The law of a contact between colliders a and b (see the top of this file).
-ContactLaw CombineLaws(const Collider& a, const Collider& b);
+/// The law of a contact between colliders a and b (see the top of this file). Inline: the
+/// contact pipeline asks for it per pair and step.
+inline ContactLaw CombineLaws(const Collider& a, const Collider& b) {
+  ContactLaw law;
+  law.mu = std::min(a.law.mu, b.law.mu);
+  law.rbar = std::max(a.law.rbar, b.law.rbar);
+  law.restitution = std::max(a.law.restitution, b.law.restitution);
+  law.rolling_resistance = std::min(a.law.rolling_resistance, b.law.rolling_resistance);
+  // the set of the first collider on a body (a comes first in the scene unless it is static)
+  law.friction_set = a.body != kWorld ? a.law.friction_set : b.law.friction_set;
+  return law;
+}
 
 /// Index of the collider named `name`, or -1.
 int FindCollider(const Scene& scene, const std::string& name);

@@ -56,9 +56,9 @@ void CollisionTable::Register(ShapeType a, ShapeType b, CollideFunction function
   functions_[Index(a)][Index(b)] = function;
 }
 
-int CollisionTable::Collide(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
-                            const Eigen::Isometry3d& pose_b, double margin,
-                            ContactGeometry* out) const {
+int CollisionTable::CollideOther(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                                 const Eigen::Isometry3d& pose_b, double margin,
+                                 ContactGeometry* out) const {
   const CollideFunction function = Find(a.type, b.type);
   if (function == nullptr) return -1;
   if (Index(a.type) <= Index(b.type)) return function(a, pose_a, b, pose_b, margin, out);

@@ -15,8 +15,12 @@ namespace nonsmooth_sim {
 bool PositionProjection::CorrectGaps(const Model& model, StepData* data,
                                      std::vector<BodyState>* state, StepStatistics* stats) {
   moved_ = false;
-  const std::vector<ClosedContact>& closed = data->closed;
+  // raw arrays: the loop calls the pair functions, after which the compiler would load every
+  // vector's fields again
+  const ClosedContact* const closed = data->closed.data();
   const std::size_t closed_count = data->closed_count;
+  const Collider* const colliders = model.scene.colliders.data();
+  const Eigen::Isometry3d* const collider_pose = data->collider_pose.data();
   // One record per closed contact, evaluated again at q_E: its group (a body and the static
   // collider it touches, or a pair of bodies), its end gap and normal. Sorted by group, the
   // highest gap first: that one decides for the group (two spheres of one body on the ground are
@@ -36,8 +40,7 @@ bool PositionProjection::CorrectGaps(const Model& model, StepData* data,
     UpdateColliderPose(model, *state, first.collider_a, /*end=*/true, data);
     UpdateColliderPose(model, *state, first.collider_b, /*end=*/true, data);
     const int count = model.scene.collision_table.Collide(
-        model.scene.colliders[a].shape, data->collider_pose[a], model.scene.colliders[b].shape,
-        data->collider_pose[b], 0.0, end);
+        colliders[a].shape, collider_pose[a], colliders[b].shape, collider_pose[b], 0.0, end);
     // a body resting on several points of one static collider (a face, corners, a capsule on
     // its side): levelled by a rotation and translation (LevelOnPoints), not only lifted
     if (first.body_a == kWorld && j - i >= 2 &&
@@ -72,11 +75,13 @@ bool PositionProjection::CorrectGaps(const Model& model, StepData* data,
     return x.highest_gap > y.highest_gap;
   };
   SortNearlySorted(gap_groups_.begin(), gap_groups_.end(), by_group);
-  std::vector<BodyState>& s = *state;
-  for (std::size_t k = 0; k < gap_groups_.size(); ++k) {
-    const GapGroup& g = gap_groups_[k];
-    if (k > 0 && g.body_b == gap_groups_[k - 1].body_b && g.body_a == gap_groups_[k - 1].body_a &&
-        g.static_collider == gap_groups_[k - 1].static_collider) {
+  BodyState* const s = state->data();
+  const GapGroup* const groups = gap_groups_.data();
+  const std::size_t group_count = gap_groups_.size();
+  for (std::size_t k = 0; k < group_count; ++k) {
+    const GapGroup& g = groups[k];
+    if (k > 0 && g.body_b == groups[k - 1].body_b && g.body_a == groups[k - 1].body_a &&
+        g.static_collider == groups[k - 1].static_collider) {
       continue;  // not the highest of its group
     }
     const double depth = -g.highest_gap;

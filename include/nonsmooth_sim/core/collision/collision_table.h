@@ -40,9 +40,21 @@ class CollisionTable {
   /// and, if it swapped them, swaps point_a/point_b and flips the normal, so that the result is
   /// always "from a to b" as passed here. Returns -1 if no function is registered for the pair.
   int Collide(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
-              const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out) const;
+              const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out) const {
+    // inline for the pairs already in order (a body's shape against a static plane, every step)
+    const unsigned ia = static_cast<unsigned>(a.type);
+    const unsigned ib = static_cast<unsigned>(b.type);
+    if (ia <= ib && ib < static_cast<unsigned>(kShapeTypeCount) && functions_[ia][ib] != nullptr) {
+      return functions_[ia][ib](a, pose_a, b, pose_b, margin, out);
+    }
+    return CollideOther(a, pose_a, b, pose_b, margin, out);
+  }
 
  private:
+  // Collide for pairs out of ShapeType order, without a function or with an invalid type
+  int CollideOther(const Shape& a, const Eigen::Isometry3d& pose_a, const Shape& b,
+                   const Eigen::Isometry3d& pose_b, double margin, ContactGeometry* out) const;
+
   // functions_[a][b] with a ≤ b in ShapeType order; the entries below the diagonal stay empty
   std::array<std::array<CollideFunction, kShapeTypeCount>, kShapeTypeCount> functions_{};
 };
