@@ -18,8 +18,9 @@ namespace {
 
 using namespace urdf_test;  // NOLINT
 
-// A link with a diagonal inertia about its centre of mass at `com` (link frame) and a sphere
-// collision there (every pair of spheres and the ground has a collide function).
+// A link of mass `mass` with its centre of mass at `com` (link frame), the diagonal inertia
+// `moments` ("ixx iyy izz") about it, and a sphere collision there (every pair of spheres, and a
+// sphere and the ground, has a collide function: no warning about a missing one).
 std::string MassiveLink(const std::string& name, const std::string& com, const std::string& mass,
                         const std::string& moments, const std::string& collision) {
   std::string ixx, iyy, izz;
@@ -240,6 +241,23 @@ TEST(UrdfLoaderJoints, APrismaticJointWithEqualLimitsIsHeldAtItsShift) {
   // the axis is normalised: 0.2 m along y, not 0.4
   EXPECT_LT((urdf.scene.colliders[0].pose.translation() - Eigen::Vector3d(0.0, 0.2, 0.5)).norm(),
             1e-16);
+}
+
+TEST(UrdfLoaderJoints, ALimitWithoutLowerAndUpperHoldsTheJointAtZero) {
+  // URDF's lower and upper default to 0: the rotor cannot turn, so it is merged, mass kept
+  const UrdfScene urdf =
+      SceneFromUrdf(Gyroscope("revolute", "<limit effort=\"1\" velocity=\"1\"/>"));
+  ASSERT_EQ(urdf.warnings.size(), 1u);
+  ExpectContains(urdf.warnings[0], {"joint \"rotor_joint\" (revolute) has lower = upper = 0 rad"});
+  EXPECT_DOUBLE_EQ(urdf.scene.bodies[0].mass, 0.13);
+}
+
+TEST(UrdfLoaderJoints, AJointHeldAwayFromZeroNeedsAnAxis) {
+  std::string xml = Gyroscope(
+      "revolute", "<limit lower=\"0.3\" upper=\"0.3\" effort=\"1\" velocity=\"1\"/>");
+  xml.replace(xml.find("<axis xyz=\"0 0 1\"/>"), 19, "<axis xyz=\"0 0 0\"/>");
+  ExpectContains(LoadError(xml), {"joint \"rotor_joint\" (revolute) > axis: xyz=\"0 0 0\"",
+                                  "gives no direction to hold the joint at 0.3"});
 }
 
 // --- joints that move but carry nothing ---------------------------------------------------------
