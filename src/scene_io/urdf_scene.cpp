@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 
+#include "link_groups.h"
 #include "nonsmooth_sim/core/collision/collision.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/format.h"
@@ -47,29 +48,7 @@ class UrdfdomErrors : public console_bridge::OutputHandler {
   std::string first_error_;
 };
 
-Eigen::Vector3d ToEigen(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
-Eigen::Quaterniond ToEigen(const urdf::Rotation& r) { return {r.w, r.x, r.y, r.z}; }
-Eigen::Isometry3d ToEigen(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = ToEigen(pose.rotation).toRotationMatrix();
-  t.translation() = ToEigen(pose.position);
-  return t;
-}
-
-std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
 std::string LinkLabel(const std::string& name) { return "link " + Quoted(name); }
-
-std::string JointTypeName(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
-  }
-}
 
 // "a", "b", "c" (quoted, comma separated); "none" when empty.
 std::string QuotedList(const std::vector<std::string>& names) {
@@ -77,26 +56,6 @@ std::string QuotedList(const std::vector<std::string>& names) {
   for (const std::string& name : names) list += (list.empty() ? "" : ", ") + Quoted(name);
   return list.empty() ? "none" : list;
 }
-
-// What a subtree of links fixed to each other becomes.
-enum class GroupKind {
-  kWorld,    // the massless root and the links fixed to it: world colliders
-  kFree,     // the root with an <inertial> or a link on a floating joint, and the links fixed to it
-  kSkipped,  // a link on another joint type and the links fixed to it
-};
-
-// One link of a group and its pose in the frame of the group's first link.
-struct Member {
-  const urdf::Link* link = nullptr;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // member link frame → group link frame
-};
-
-struct Group {
-  GroupKind kind = GroupKind::kFree;
-  std::string joint;  // joint "j" (revolute) that attaches the group, "" for the root
-  Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();  // group link frame → world
-  std::vector<Member> members;  // the group's own link first, then the fixed ones
-};
 
 // Mass, centre of mass and inertia about it of a group, in its first link's frame and axes.
 struct MassProperties {
@@ -165,7 +124,8 @@ void CheckRigidBody(const std::string& what, double mass, const Eigen::Matrix3d&
 // mass in the axes of <inertial><origin> (rotation R_o); the member link is turned by R_m in the
 // group link's frame, so Θ = (R_m R_o) Θ (R_m R_o)ᵀ. Throws unless Θ is positive definite and a
 // rigid body's (CheckRigidBody).
-void AddInertial(const Member& member, std::vector<std::pair<double, Eigen::Vector3d>>* masses,
+void AddInertial(const LinkGroup::Member& member,
+                 std::vector<std::pair<double, Eigen::Vector3d>>* masses,
                  std::vector<Eigen::Matrix3d>* inertias) {
   const urdf::Link& link = *member.link;
   const urdf::Inertial& inertial = *link.inertial;
@@ -190,10 +150,10 @@ void AddInertial(const Member& member, std::vector<std::pair<double, Eigen::Vect
 
 // The members' inertials combined (see urdf_scene.h): m = Σ mᵢ, c = Σ mᵢ cᵢ / m,
 // Θ_S = Σ [Θᵢ + mᵢ (|dᵢ|² 1 − dᵢ dᵢᵀ)] with dᵢ = cᵢ − c. mass = 0 when no member has one.
-MassProperties CombinedMass(const std::vector<Member>& members) {
+MassProperties CombinedMass(const std::vector<LinkGroup::Member>& members) {
   std::vector<std::pair<double, Eigen::Vector3d>> masses;  // (mᵢ, cᵢ)
   std::vector<Eigen::Matrix3d> inertias;                   // Θᵢ about cᵢ
-  for (const Member& member : members) {
+  for (const LinkGroup::Member& member : members) {
     if (member.link->inertial) AddInertial(member, &masses, &inertias);
   }
   MassProperties total;
@@ -295,29 +255,30 @@ class Builder {
     result_.scene.gravity = Eigen::Vector3d(0.0, 0.0, -options_.gravity);
     result_.scene.collision_table = options_.collision_table;
     const urdf::Link& root = *model_.getRoot();
-    Collect(root, root.inertial ? GroupKind::kFree : GroupKind::kWorld, "",
-            Eigen::Isometry3d::Identity());
+    groups_ = GroupLinks(model_, &result_.warnings);
     // bodies in the document order of their links; the world group (the root's) first
-    std::stable_sort(groups_.begin(), groups_.end(), [&](const Group& a, const Group& b) {
-      const auto rank = [&](const Group& g) {
-        return std::make_pair(g.kind != GroupKind::kWorld, Index(*g.members.front().link));
+    std::stable_sort(groups_.begin(), groups_.end(), [&](const LinkGroup& a, const LinkGroup& b) {
+      const auto rank = [&](const LinkGroup& g) {
+        return std::make_pair(g.kind != LinkGroup::Kind::kWorld, Index(*g.members.front().link));
       };
       return rank(a) < rank(b);
     });
-    for (Group& group : groups_) {
+    for (LinkGroup& group : groups_) {
       std::stable_sort(group.members.begin() + 1, group.members.end(),
-                       [&](const Member& a, const Member& b) {
+                       [&](const LinkGroup::Member& a, const LinkGroup::Member& b) {
                          return Index(*a.link) < Index(*b.link);
                        });
       switch (group.kind) {
-        case GroupKind::kWorld: AddWorld(group); break;
-        case GroupKind::kFree: AddBody(group); break;
-        case GroupKind::kSkipped: ReportSkipped(group); break;
+        case LinkGroup::Kind::kWorld: AddWorld(group); break;
+        case LinkGroup::Kind::kFree: AddBody(group); break;
+        case LinkGroup::Kind::kLeftOut: break;  // nothing in it to simulate (link_groups.h)
       }
     }
     if (result_.scene.bodies.empty()) {
       throw UrdfError("urdf: no free body: the root " + LinkLabel(root.name) +
-                      (root.inertial ? "" : " has no <inertial>, so it is the static world,") +
+                      (root.inertial ? ""
+                                     : " has no <inertial> (nor has a link fixed to it), so it "
+                                       "is the static world,") +
                       " and no link with an <inertial> hangs on a floating joint");
     }
     if (options_.ground) result_.scene.colliders.push_back(GroundPlane());
@@ -371,43 +332,9 @@ class Builder {
     }
   }
 
-  // The group of `link` (the link and those fixed to it), then the groups below it, depth first.
-  void Collect(const urdf::Link& link, GroupKind kind, const std::string& joint,
-               const Eigen::Isometry3d& world_pose) {
-    struct Next {
-      const urdf::Link* link;
-      const urdf::Joint* joint;
-      Eigen::Isometry3d world_pose;
-    };
-    std::vector<Next> below;
-    Group group{kind, joint, world_pose, {}};
-    const auto add = [&](const auto& self, const urdf::Link& member,
-                         const Eigen::Isometry3d& pose) -> void {
-      group.members.push_back({&member, pose});
-      for (const urdf::JointSharedPtr& j : member.child_joints) {
-        const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
-        if (!child) continue;
-        const Eigen::Isometry3d child_pose = pose * ToEigen(j->parent_to_joint_origin_transform);
-        if (j->type == urdf::Joint::FIXED) {
-          self(self, *child, child_pose);
-        } else {
-          below.push_back({child.get(), j.get(), world_pose * child_pose});
-        }
-      }
-    };
-    add(add, link, Eigen::Isometry3d::Identity());
-    groups_.push_back(std::move(group));
-    for (const Next& next : below) {
-      Collect(*next.link,
-              next.joint->type == urdf::Joint::FLOATING ? GroupKind::kFree : GroupKind::kSkipped,
-              "joint " + Quoted(next.joint->name) + " (" + JointTypeName(next.joint->type) + ")",
-              next.world_pose);
-    }
-  }
-
-  void AddWorld(const Group& group) {
+  void AddWorld(const LinkGroup& group) {
     const std::string& world = group.members.front().link->name;
-    for (const Member& member : group.members) {
+    for (const LinkGroup::Member& member : group.members) {
       if (member.link->inertial) {
         throw UrdfError("urdf: " + LinkLabel(member.link->name) + " is fixed to the world " +
                         LinkLabel(world) +
@@ -419,11 +346,11 @@ class Builder {
     }
   }
 
-  void AddBody(const Group& group) {
+  void AddBody(const LinkGroup& group) {
     const urdf::Link& link = *group.members.front().link;
     const MassProperties mass = CombinedMass(group.members);
     if (mass.mass == 0.0) {
-      for (const Member& member : group.members) {
+      for (const LinkGroup::Member& member : group.members) {
         if (!member.link->collision_array.empty()) {
           throw UrdfError("urdf: " + LinkLabel(link.name) +
                           ": no <inertial> (a free body with collisions needs mass and inertia" +
@@ -441,7 +368,7 @@ class Builder {
     // K: the body link's frame shifted to S, link axes
     const Eigen::Isometry3d link_in_body(Eigen::Translation3d(-mass.com));
     std::vector<std::string> merged;
-    for (const Member& member : group.members) {
+    for (const LinkGroup::Member& member : group.members) {
       AddColliders(*member.link, link_in_body * member.pose, index);
       if (member.link == &link) continue;
       merged.push_back(member.link->name);
@@ -466,19 +393,6 @@ class Builder {
     result_.scene.bodies.push_back(body);
     result_.scene.initial_state.push_back(state);
     result_.merged_links.push_back(std::move(merged));
-  }
-
-  void ReportSkipped(const Group& group) {
-    const std::string& first = group.members.front().link->name;
-    for (const Member& member : group.members) {
-      if (!member.link->inertial && member.link->collision_array.empty()) continue;
-      const std::string& name = member.link->name;
-      result_.warnings.push_back(
-          "urdf: " + LinkLabel(name) +
-          (name == first ? "" : " is fixed to " + LinkLabel(first) + ", which") + " hangs on " +
-          group.joint + ": only the root, links on floating joints and links fixed to them are "
-          "simulated, skipped");
-    }
   }
 
   // The colliders of `link`; `frame` maps the link frame to K of body `body` (or to the world).
@@ -638,7 +552,7 @@ class Builder {
   const UrdfSceneOptions& options_;
   std::map<std::string, std::size_t> document_index_;
   std::map<std::string, std::string> collider_links_;  // collider name → link ("" = the ground)
-  std::vector<Group> groups_;
+  std::vector<LinkGroup> groups_;
   UrdfScene result_;
 };
 

@@ -39,6 +39,9 @@ inline const std::vector<BadUrdf>& BadUrdfFixtures() {
                                "triangle inequality"}},
       {"absurd_friction.urdf", {"gazebo reference=\"tippe_top\"", "ode > mu",
                                 "1e300 is out of range, expected [0, 1000]"}},
+      // a link with mass on a joint the simulator does not model: its mass must not be lost
+      {"moving_joint.urdf", {"joint \"rotor_joint\" (continuous) moves link \"rotor\"",
+                             "make it fixed to merge the link into its parent, or floating"}},
   };
   return fixtures;
 }

@@ -1,12 +1,17 @@
 // URDF -> Scene, the bodies: the shipped Tippe-Top URDF gives exactly the core's Tippe-Top
 // scene; links fixed to a body merge into it (mass, centre of mass and inertia checked against
-// a hand computation with the reduced mass); other joint types are reported and skipped; a
-// Tippe-Top is recognised only with its spheres on the axis.
+// a hand computation with the reduced mass); every shipped scene loads as it did before the root
+// and joint rules of urdf_loader_joints_test; a Tippe-Top is recognised only with its spheres on
+// the axis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "nonsmooth_sim/core/tippe_top.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
@@ -80,6 +85,52 @@ TEST(UrdfLoader, ShippedTippeTopEqualsTheCoreScene) {
   scene.initial_state = {TippeTopInitialState(*urdf.tippe_top[0], {})};
   ExpectSameScene(scene, MakeTippeTopScene());
   EXPECT_TRUE(urdf.merged_links[0].empty());
+}
+
+// Every shipped scene (urdf/*.urdf) as it loaded before massless roots could become bodies and
+// moving joints were refused: its bodies (names and masses, the <mass> of their one link each),
+// its colliders (the ground last) and no warning. A root that became a body, or a link refused,
+// would change a count or a name here.
+TEST(UrdfLoader, ShippedScenesLoadAsBefore) {
+  struct Shipped {
+    std::string file;
+    std::vector<std::pair<std::string, double>> bodies;  // name, mass [kg]
+    std::size_t colliders;                               // the ground included
+  };
+  const std::vector<Shipped> shipped = {
+      {"classic_top", {{"classic_top", 0.02}}, 3},
+      {"coin", {{"coin", 0.0075}}, 2},
+      {"die", {{"die", 0.0045}}, 2},
+      {"euler_disk", {{"euler_disk", 0.41616285183022284}}, 2},
+      {"rattleback", {{"rattleback", 1.0}}, 2},
+      {"spinning_egg", {{"spinning_egg", 0.05}}, 2},
+      {"tippe_top", {{"tippe_top", 6e-3}}, 3},
+      {"tippe_top_duel", {{"top1", 6e-3}, {"top2", 6e-3}}, 5},
+  };
+  std::size_t checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SourcePath("urdf"))) {
+    if (entry.path().extension() != ".urdf") continue;
+    const std::string file = entry.path().stem().string();
+    const auto expected = std::find_if(shipped.begin(), shipped.end(),
+                                       [&](const Shipped& s) { return s.file == file; });
+    ASSERT_NE(expected, shipped.end()) << file << ".urdf: a new shipped scene, add it here";
+    ++checked;
+    const UrdfScene urdf = LoadUrdfFile(entry.path().string());
+    EXPECT_TRUE(urdf.warnings.empty()) << file << ": " << urdf.warnings.front();
+    ASSERT_EQ(urdf.scene.bodies.size(), expected->bodies.size()) << file;
+    for (std::size_t b = 0; b < expected->bodies.size(); ++b) {
+      EXPECT_EQ(urdf.scene.bodies[b].name, expected->bodies[b].first) << file;
+      EXPECT_EQ(urdf.scene.bodies[b].mass, expected->bodies[b].second) << file;
+      EXPECT_TRUE(urdf.merged_links[b].empty()) << file;
+    }
+    ASSERT_EQ(urdf.scene.colliders.size(), expected->colliders) << file;
+    for (std::size_t k = 0; k + 1 < urdf.scene.colliders.size(); ++k) {
+      EXPECT_NE(urdf.scene.colliders[k].body, kWorld) << file << ": "
+                                                      << urdf.scene.colliders[k].name;
+    }
+    EXPECT_EQ(urdf.scene.colliders.back().name, "ground") << file;
+  }
+  EXPECT_EQ(checked, shipped.size());
 }
 
 TEST(UrdfLoader, OptionsReplaceTheUrdfLawAndGravityAsInTheCoreScene) {
@@ -260,26 +311,6 @@ TEST(UrdfLoader, AMasslessFloatingLinkTakesTheMassOfTheLinksFixedToIt) {
   EXPECT_EQ(urdf.scene.colliders[0].pose.translation(), Eigen::Vector3d::Zero());
   EXPECT_EQ(urdf.scene.initial_state[0].position, Eigen::Vector3d(0.0, 0.2, 1.0));
   EXPECT_EQ(urdf.merged_links[0], std::vector<std::string>{"load"});
-}
-
-TEST(UrdfLoader, OtherJointTypesAreReportedAndSkipped) {
-  // b -revolute-> c (skipped) -floating-> d (a body again)
-  const std::string xml =
-      std::string("<robot name=\"r\">") + "<link name=\"b\">" + kUnitInertial + kBall + "</link>" +
-      "<link name=\"c\">" + kUnitInertial + "</link>" +
-      "<link name=\"d\">" + kUnitInertial +
-      "<collision name=\"ball_d\"><geometry><sphere radius=\"0.1\"/></geometry></collision>"
-      "</link>"
-      "<joint name=\"bc\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/>"
-      "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"
-      "<joint name=\"cd\" type=\"floating\"><parent link=\"c\"/><child link=\"d\"/>"
-      "<origin xyz=\"2 0 0\"/></joint></robot>";
-  const UrdfScene urdf = SceneFromUrdf(xml);
-  ASSERT_EQ(urdf.scene.bodies.size(), 2u);
-  EXPECT_EQ(urdf.scene.bodies[1].name, "d");
-  EXPECT_EQ(urdf.scene.initial_state[1].position, Eigen::Vector3d(2.0, 0.0, 0.0));
-  ASSERT_EQ(urdf.warnings.size(), 1u);
-  ExpectContains(urdf.warnings[0], {"link \"c\" hangs on joint \"bc\" (revolute)", "skipped"});
 }
 
 // --- Tippe-Top detection -------------------------------------------------------------------------

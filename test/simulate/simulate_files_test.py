@@ -2,7 +2,8 @@
 """simulate refuses files that are not regular files or exceed the size bound with one line and
 exit code 2, before reading them (a FIFO without a writer must not hang it, /dev/zero must not be
 read until memory runs out); an exception the loader does not expect (out of memory) is one line
-and exit code 4 (docs/simulate.md, "Exit codes").
+and exit code 4 (docs/simulate.md, "Exit codes"). A URDF the loader refuses (a link with mass on
+a moving joint) is one line and exit code 2 as well.
 
   simulate_files_test.py <simulate executable> <source dir>
 """
@@ -80,6 +81,16 @@ class SimulateFiles(unittest.TestCase):
             f.write("bodies: {}\n---\nbodies: {}\n")
         self.expect_refusal(["--urdf", URDF, "--initial", yaml],
                             "(line 2, column 1): a second YAML document")
+
+    def test_a_link_with_mass_on_a_moving_joint_is_refused(self):
+        # the loader's UrdfError is a bad file: one line, exit 2, nothing simulated without the
+        # rotor's mass (the node's fixture, test/node/fixtures)
+        gyroscope = os.path.join(SOURCE, "test", "node", "fixtures", "moving_joint.urdf")
+        self.expect_refusal(["--urdf", gyroscope],
+                            "simulate: urdf: " + gyroscope + ": joint \"rotor_joint\" "
+                            "(continuous) moves link \"rotor\"",
+                            "make it fixed to merge the link into its parent, or floating to "
+                            "make it a body of its own")
 
     def test_out_of_memory_is_one_line_and_exit_4(self):
         # the CSV is reserved up front: 10^6 rows (decimate 10) of 20 columns, 160 MB, beyond

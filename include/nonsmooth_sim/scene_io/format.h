@@ -1,4 +1,4 @@
-// A number as the loader's and the programs' error lines quote it.
+// A number, and a name, as the loader's and the programs' error lines quote them.
 #ifndef NONSMOOTH_SIM_SCENE_IO_FORMAT_H_
 #define NONSMOOTH_SIM_SCENE_IO_FORMAT_H_
 
@@ -14,6 +14,9 @@ inline std::string Format(double value) {
   out << value;
   return out.str();
 }
+
+/// `text` in double quotes, as error lines and warnings name links, joints and collisions.
+inline std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
 
 }  // namespace nonsmooth_sim::scene_io
 

@@ -1,19 +1,27 @@
 // A core Scene from a URDF (urdfdom model + TinyXML2 extension tags). Conversion only, no physics,
 // no ROS. The user's guide with examples is docs/urdf.md.
 //
-// Bodies and the static world:
+// Bodies and the static world (the grouping: src/scene_io/link_groups.h):
 //  - a free body is a link that is the root or hangs on a `floating` joint, together with the
-//    links fixed to it (recursively, by `fixed` joints). Its body frame K has its origin at the
+//    links fixed to it (recursively, by `fixed` joints, and by `revolute` or `prismatic` joints
+//    whose limits are equal, lower = upper: they cannot move, so the link is held at that
+//    position, reported in UrdfScene::warnings). Its body frame K has its origin at the
 //    centre of mass S and the axes of that link; RigidBody::com_in_link is S in that link's frame.
 //    Each <inertial> is re-expressed in link axes (inertia given in the rotated <inertial><origin>
 //    frame R: Θ_link = R Θ Rᵀ) and the links merged by fixed joints combine exactly:
 //      m = Σ mᵢ,  c = Σ mᵢ cᵢ / m,  Θ_S = Σ [Θᵢ + mᵢ (|dᵢ|² 1 − dᵢ dᵢᵀ)],  dᵢ = cᵢ − c
 //    (parallel-axis theorem; cᵢ and Θᵢ in the body link's frame and axes).
-//  - a root link without <inertial> (e.g. `world`) is the static world: its collisions and those
-//    of the links fixed to it (recursively) are world colliders (body kWorld) at their world pose.
-//    Such static links must not have an <inertial>.
-//  - links on other joint types (revolute, prismatic, ...) are reported in UrdfScene::warnings and
-//    skipped; floating joints below them still make free bodies.
+//  - the root is a free body (named after it) when it or a link fixed to it has an <inertial>:
+//    the massless root exporters write (`base_footprint` above `base_link`) is lumped with the
+//    links fixed to it, as Gazebo lumps it. Otherwise, and always when it is named `world`, the
+//    root is the static world: its collisions and those of the links fixed to it (recursively)
+//    are world colliders (body kWorld) at their world pose; such static links must not have an
+//    <inertial>. Links on floating joints below the root are free bodies of their own either way.
+//  - the simulator has no joints: a link on a `revolute`, `continuous`, `prismatic` or `planar`
+//    joint that can move is refused (UrdfError naming the joint, its type and the link) when it
+//    or a link fixed to it has an <inertial> or a <collision>; without either it is left out with
+//    a warning. Floating joints below a left-out link still make free bodies (at the moving
+//    joint's zero position).
 //  - bodies are listed in the document order of their links.
 //
 // Colliders:
@@ -58,7 +66,8 @@
 // Errors: a malformed or inconsistent URDF throws UrdfError with one line naming the element and
 // the reason (not XML, no inertial on a body with collisions, mass ≤ 0, inertia not positive
 // definite, degenerate shapes, NaN or Inf in any number, a typo in a <nonsmooth_sim> block, a
-// collision name used twice, a static link with mass, ...). Overlapping bodies are not checked
+// collision name used twice, a static link with mass, a link with mass or collisions on a joint
+// that can move, ...). Overlapping bodies are not checked
 // here (the simulator reports them).
 //
 // Bounds: what loads is a simulable rigid body. Finite is not enough (mass 4.9e-324 passes "> 0"
@@ -178,7 +187,8 @@ struct UrdfScene {
   /// Every link that is not a body's own (the static world's, those merged into bodies), in
   /// document order per group: fixed transforms for TF.
   std::vector<FixedLink> fixed_links;
-  /// What was skipped and why, one line each ("urdf: ...").
+  /// What was left out or changed and why (a joint held rigid, a massless link on a moving
+  /// joint, anisotropic friction, ...), one line each ("urdf: ...").
   std::vector<std::string> warnings;
 };
 
