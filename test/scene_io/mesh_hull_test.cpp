@@ -136,7 +136,9 @@ TEST(MeshHull, TheVertexCapHoldsAndKeepsInputPoints) {
     // inside the sphere's mesh (measured with 64 vertices: 0.848 of its volume)
     const double ratio = HullVolume(*hull) / MeshVolume(sphere);
     EXPECT_LT(ratio, 1.0 + 1e-12) << cap;
-    if (cap >= 64) EXPECT_GT(ratio, 0.8) << cap;
+    if (cap >= 64) {
+      EXPECT_GT(ratio, 0.8) << cap;
+    }
   }
   // uncapped: all 642
   EXPECT_EQ(Load(path, Eigen::Vector3d::Ones(), kMaxHullVerticesBound)->vertices.size(), 642u);

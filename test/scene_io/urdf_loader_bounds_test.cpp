@@ -142,7 +142,7 @@ TEST(UrdfLoader, FrictionAndContactRadiiOutsideTheirRangesAreRejected) {
   ExpectContains(LoadError(with(Friction("0.5", "1e4"))), {"coefficient", "[0, 1000]"});
   ExpectContains(LoadError(with(Friction("0.5", "0.5", "1e4"))), {"patch_radius", "[0, 1000] m"});
   // the rolling-resistance length: negative, beyond 1000 m, NaN or not a number
-  for (const std::string& bad : {"-1e-4", "2e3", "nan", "inf", "abc"}) {
+  for (const std::string bad : {"-1e-4", "2e3", "nan", "inf", "abc"}) {
     ExpectContains(LoadError(with("<nonsmooth_sim reference=\"b\"><rolling_resistance>" + bad +
                                   "</rolling_resistance></nonsmooth_sim>")),
                    {"nonsmooth_sim reference=\"b\" > rolling_resistance"});
