@@ -7,7 +7,7 @@
 #   P/lib/nonsmooth_sim/        nonsmooth_sim_node, simulate, node_speed_subscriber, the report scripts
 #   P/lib/                      the static libraries (core, mesh, scene_io, collision_fcl, ros)
 #   P/include/nonsmooth_sim/    the headers (and the generated message headers, by catkin)
-#   P/share/nonsmooth_sim/      package.xml, launch/, urdf/, config/ (msg/, srv/, cmake/ by catkin)
+#   P/share/nonsmooth_sim/      package.xml, launch/, urdf/, config/, meshes/ (msg/, srv/, cmake/ by catkin)
 
 install(TARGETS simulate nonsmooth_sim_node node_speed_subscriber
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
@@ -16,8 +16,8 @@ install(TARGETS nonsmooth_sim_core nonsmooth_sim_mesh nonsmooth_sim_scene_io non
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/${PROJECT_NAME}/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION}
   FILES_MATCHING PATTERN "*.h")
-# the scenes, their initial states, launch files and the rviz configuration
-install(DIRECTORY launch urdf config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+# the scenes, their initial states and meshes, launch files and the rviz configuration
+install(DIRECTORY launch urdf config meshes DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 # rosrun nonsmooth_sim scene_report.py ...; the shebang becomes the configured
 # PYTHON_EXECUTABLE (default /usr/bin/python3; cmake -DPYTHON_EXECUTABLE=... to change)
 catkin_install_python(PROGRAMS scripts/scene_report.py scripts/dev/tradeoff_report.py

@@ -20,7 +20,7 @@ step and the CPU time of the stepping.
   classic_top    inclination of the axis and precession rate
   tippe_top_duel x of both centres and the energy
   coin           vertical spin w_z
-  die            height of the centre and speed
+  die, d20       height of the centre and speed
 Uses Debian's python3-matplotlib and numpy; runs headless.
 """
 import csv
@@ -128,7 +128,7 @@ def quantity(scene, c):
     if scene == "tippe_top_duel":
         curves = [(f"{b} x [mm]", 1e3 * c[f"{b}/x"]) for b in bodies_of(c)]
         return ("x of the centres", "mm", curves, "", "", "")
-    if scene == "die":
+    if scene in ("die", "d20"):
         z = 1e3 * c[f"{body}/z"]
         speed = np.sqrt(sum(c[f"{body}/v{k}"] ** 2 for k in "xyz"))
         return ("height / speed", "mm, m/s", [("z [mm]", z), ("|v| [m/s]", speed)],

@@ -100,6 +100,7 @@ TEST(UrdfLoader, ShippedScenesLoadAsBefore) {
   const std::vector<Shipped> shipped = {
       {"classic_top", {{"classic_top", 0.02}}, 3},
       {"coin", {{"coin", 0.0075}}, 2},
+      {"d20", {{"d20", 0.00405073991}}, 2},
       {"die", {{"die", 0.0045}}, 2},
       {"euler_disk", {{"euler_disk", 0.41616285183022284}}, 2},
       {"rattleback", {{"rattleback", 1.0}}, 2},
@@ -115,7 +116,9 @@ TEST(UrdfLoader, ShippedScenesLoadAsBefore) {
                                        [&](const Shipped& s) { return s.file == file; });
     ASSERT_NE(expected, shipped.end()) << file << ".urdf: a new shipped scene, add it here";
     ++checked;
-    const UrdfScene urdf = LoadUrdfFile(entry.path().string());
+    UrdfSceneOptions options;
+    options.ros_package_path = SourcePath("");  // package://nonsmooth_sim/meshes/ (d20)
+    const UrdfScene urdf = LoadUrdfFile(entry.path().string(), options);
     EXPECT_TRUE(urdf.warnings.empty()) << file << ": " << urdf.warnings.front();
     ASSERT_EQ(urdf.scene.bodies.size(), expected->bodies.size()) << file;
     for (std::size_t b = 0; b < expected->bodies.size(); ++b) {

@@ -46,9 +46,12 @@ inline int BodyIndex(const Scene& scene, const std::string& name) {
   throw std::invalid_argument("no body named " + name);
 }
 
-/// urdf/<name>.urdf through the scene loader (with `options`), started from config/<name>.yaml.
+/// urdf/<name>.urdf through the scene loader (with `options`; package:// finds this source
+/// tree), started from config/<name>.yaml.
 inline Scene LoadShippedScene(const std::string& name,
-                              const scene_io::UrdfSceneOptions& options = {}) {
+                              scene_io::UrdfSceneOptions options = {}) {
+  // package://nonsmooth_sim/ meshes (urdf/d20.urdf): this source tree, whatever the environment
+  if (!options.ros_package_path) options.ros_package_path = SourcePath("");
   const scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(SourcePath("urdf/" + name + ".urdf"),
                                                           options);
   Scene scene = urdf.scene;
