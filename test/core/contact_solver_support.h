@@ -109,7 +109,9 @@ inline double Support(const ContactLaw& law, int dim, const Eigen::Vector3d& d, 
   switch (law.friction_set) {
     case FrictionSet::kCylinder: return rho * (d_t + law.rbar * d_tau);
     case FrictionSet::kEllipsoid:
-    case FrictionSet::kSphere: return rho * std::hypot(d_t, law.rbar * d_tau);
+    case FrictionSet::kSphere:
+    case FrictionSet::kRolling:  // the 3-D part: E_F, as the sphere row
+    case FrictionSet::kRollingDecoupled: return rho * std::hypot(d_t, law.rbar * d_tau);
     case FrictionSet::kExact: {
       // max over the boundary curve: dense sampling in u = tan(θ), then golden section; for
       // u > kMaxU the rim value d_t (low by at most R̄ d_τ b_τ(kMaxU) ≈ 3e-4 R̄ d_τ, and only
@@ -147,7 +149,9 @@ inline double Level(const ContactLaw& law, int dim, const Eigen::Vector3d& p, do
   switch (law.friction_set) {
     case FrictionSet::kCylinder: return std::max(t, s);
     case FrictionSet::kEllipsoid:
-    case FrictionSet::kSphere: return std::hypot(t, s);
+    case FrictionSet::kSphere:
+    case FrictionSet::kRolling:  // the 3-D part: E_F, as the sphere row
+    case FrictionSet::kRollingDecoupled: return std::hypot(t, s);
     case FrictionSet::kExact: {
       // b_T increases, b_τ decreases along the curve: find u with b_T(u) = t, compare b_τ(u)
       const Boundary rim = ContensouCurve(kMaxU);
@@ -313,7 +317,9 @@ inline void FrictionBoundaryPoint(const ContactLaw& law, int dim, double rho, st
       return;
     }
     case FrictionSet::kEllipsoid:
-    case FrictionSet::kSphere: {
+    case FrictionSet::kSphere:
+    case FrictionSet::kRolling:  // without μ_r: the sphere row (theory.md, "Rolling resistance")
+    case FrictionSet::kRollingDecoupled: {
       const double phi = (unit(rng) - 0.5) * 0.98 * kPi;
       *point = rho * std::cos(phi) * e + rbar * rho * std::sin(phi) * Eigen::Vector3d::UnitZ();
       // the gradient of (55)
