@@ -55,29 +55,7 @@ TEST(D20, LandsTumblesAndRestsOnOneFace) {
   options.time_step = 1e-4;
   Simulator sim(LoadShippedScene("d20"), options);
   Runner run(&sim);
-  double first_contact = -1.0;
-  double turned_on_floor = 0.0;  // ∫|ω| dt after the first contact [rad]
-  long signature = -1;           // the contact set (features) of the last step
-  double last_change = 0.0;      // when the contact set last changed [s]
-  Eigen::Vector3d position_at_1s = Eigen::Vector3d::Zero();
-  double max_speed_late = 0.0;  // over the last second
-  while (sim.time() < 2.0 && run.finite()) {
-    run.Step();
-    const BodyState& s = sim.state()[0];
-    if (first_contact < 0.0 && !sim.contacts().empty()) first_contact = sim.time();
-    if (first_contact >= 0.0) turned_on_floor += s.angular_velocity.norm() * options.time_step;
-    long sig = 0;
-    for (const ContactState& c : sim.contacts()) sig = sig * 64 + c.feature + 1;
-    if (sig != signature) {
-      signature = sig;
-      last_change = sim.time();
-    }
-    if (std::abs(sim.time() - 1.0) < 0.5 * options.time_step) position_at_1s = s.position;
-    if (sim.time() > 1.0) {
-      max_speed_late =
-          std::max(max_speed_late, scene_test::MaxPointSpeed(sim.scene(), sim.state(), 0));
-    }
-  }
+  const scene_test::Toss toss = scene_test::RunToss(&sim, &run, 2.0);
   const BodyState& s = sim.state()[0];
   // the face it rests on: the one whose outward normal is closest to −ẑ
   const ConvexHull& hull = HullOf(sim.scene());
@@ -87,17 +65,17 @@ TEST(D20, LandsTumblesAndRestsOnOneFace) {
   std::printf("first contact %.4f s, turned %.2f rad on the floor, contacts settled at %.4f s "
               "(%zu contacts), face tilt %.2e rad, z_S - inradius = %.2e m, drift %.2e m, max "
               "speed %.2e m/s over the last second, max penetration %.2e m\n",
-              first_contact, turned_on_floor, last_change, sim.contacts().size(),
+              toss.first_contact, toss.turned_on_floor, toss.last_change, sim.contacts().size(),
               std::acos(std::min(1.0, down)), s.position.z() - kInradius,
-              (s.position - position_at_1s).norm(), max_speed_late, run.max_penetration());
-  EXPECT_GT(first_contact, 0.0);
-  EXPECT_GT(turned_on_floor, 0.3);
+              (s.position - toss.position_at_1s).norm(), toss.max_speed_late, run.max_penetration());
+  EXPECT_GT(toss.first_contact, 0.0);
+  EXPECT_GT(toss.turned_on_floor, 0.3);
   EXPECT_EQ(sim.contacts().size(), 3u);
   EXPECT_GT(down, std::cos(1e-3));
   EXPECT_NEAR(s.position.z(), kInradius, 5.0 * kGapCorrectionSlop);
-  EXPECT_LT(last_change, 1.0);
-  EXPECT_LT(max_speed_late, 1e-12);
-  EXPECT_LT((s.position - position_at_1s).norm(), 1e-12);
+  EXPECT_LT(toss.last_change, 1.0);
+  EXPECT_LT(toss.max_speed_late, 1e-12);
+  EXPECT_LT((s.position - toss.position_at_1s).norm(), 1e-12);
   EXPECT_LE(run.max_energy_excess(), 0.0) << "at t = " << run.max_energy_excess_time();
   EXPECT_TRUE(run.finite());
 }

@@ -29,31 +29,7 @@ TEST(Die, LandsTumblesAndRestsOnOneFace) {
   options.time_step = 1e-4;
   Simulator sim(LoadShippedScene("die"), options);
   Runner run(&sim);
-  double first_contact = -1.0;
-  double turned_on_floor = 0.0;  // ∫|ω| dt after the first contact [rad]
-  long signature = -1;           // the contact set (features) of the last step
-  double last_change = 0.0;      // when the contact set last changed [s]
-  Eigen::Vector3d position_at_1s = Eigen::Vector3d::Zero();
-  double max_penetration_late = 0.0;  // over the last second
-  double max_speed_late = 0.0;
-  while (sim.time() < 2.0 && run.finite()) {
-    const StepStatistics& stats = run.Step();
-    const BodyState& s = sim.state()[0];
-    if (first_contact < 0.0 && !sim.contacts().empty()) first_contact = sim.time();
-    if (first_contact >= 0.0) turned_on_floor += s.angular_velocity.norm() * options.time_step;
-    long sig = 0;
-    for (const ContactState& c : sim.contacts()) sig = sig * 32 + c.feature + 1;
-    if (sig != signature) {
-      signature = sig;
-      last_change = sim.time();
-    }
-    if (std::abs(sim.time() - 1.0) < 0.5 * options.time_step) position_at_1s = s.position;
-    if (sim.time() > 1.0) {
-      max_penetration_late = std::max(max_penetration_late, stats.max_penetration);
-      max_speed_late =
-          std::max(max_speed_late, scene_test::MaxPointSpeed(sim.scene(), sim.state(), 0));
-    }
-  }
+  const scene_test::Toss toss = scene_test::RunToss(&sim, &run, 2.0);
   const BodyState& s = sim.state()[0];
   // the face it rests on: the body axis closest to the vertical
   const Eigen::Matrix3d r = s.orientation.normalized().toRotationMatrix();
@@ -61,14 +37,14 @@ TEST(Die, LandsTumblesAndRestsOnOneFace) {
   std::printf("first contact %.4f s, turned %.2f rad on the floor, contacts settled at %.4f s "
               "(%zu contacts), axis tilt %.2e rad, z_S - s/2 = %.2e m, drift %.2e m, max speed "
               "%.2e m/s and penetration %.2e m over the last second, max penetration %.2e m\n",
-              first_contact, turned_on_floor, last_change, sim.contacts().size(),
+              toss.first_contact, toss.turned_on_floor, toss.last_change, sim.contacts().size(),
               std::acos(std::min(1.0, vertical)), s.position.z() - kHalfSide,
-              (s.position - position_at_1s).norm(), max_speed_late, max_penetration_late,
-              run.max_penetration());
+              (s.position - toss.position_at_1s).norm(), toss.max_speed_late,
+              toss.max_penetration_late, run.max_penetration());
   // lands and tumbles
-  EXPECT_GT(first_contact, 0.1);
-  EXPECT_LT(first_contact, 0.2);
-  EXPECT_GT(turned_on_floor, 0.3);
+  EXPECT_GT(toss.first_contact, 0.1);
+  EXPECT_LT(toss.first_contact, 0.2);
+  EXPECT_GT(toss.turned_on_floor, 0.3);
   // rests on one face (measured: on four corners, axis tilt 2.2e-4 rad, S 2.4e-6 m low, the
   // deepest corner 4.3e-6 m in the floor: the landing leaves it tilted into the floor and the gap
   // correction lifts only to the highest closed contact (-0.7e-6 m, above the slop), so the tilt
@@ -76,11 +52,11 @@ TEST(Die, LandsTumblesAndRestsOnOneFace) {
   EXPECT_GT(vertical, std::cos(1e-3));
   EXPECT_NEAR(s.position.z(), kHalfSide, 5.0 * kGapCorrectionSlop);
   // no jitter: the contacts stopped changing within 0.2 s of landing; at rest to round-off
-  EXPECT_LT(last_change, first_contact + 0.2);
-  EXPECT_LT(max_speed_late, 1e-12);
+  EXPECT_LT(toss.last_change, toss.first_contact + 0.2);
+  EXPECT_LT(toss.max_speed_late, 1e-12);
   // no drift, no sinking
-  EXPECT_LT((s.position - position_at_1s).norm(), 1e-12);
-  EXPECT_LT(max_penetration_late, 5.0 * kGapCorrectionSlop);
+  EXPECT_LT((s.position - toss.position_at_1s).norm(), 1e-12);
+  EXPECT_LT(toss.max_penetration_late, 5.0 * kGapCorrectionSlop);
   EXPECT_LE(run.max_energy_excess(), 0.0) << "at t = " << run.max_energy_excess_time();
   EXPECT_TRUE(run.finite());
 }

@@ -193,6 +193,44 @@ inline double MaxPointSpeed(const Scene& scene, const std::vector<BodyState>& st
   return s.linear_velocity.norm() + s.angular_velocity.norm() * radius;
 }
 
+/// What a tossed body (body 0: the dice) did over a run: when it first touched, how far it turned
+/// on the floor, when its set of contacts last changed, and after t = 1 s its largest point speed
+/// and penetration and its position at 1 s (for the drift).
+struct Toss {
+  double first_contact = -1.0;   ///< [s], -1: never
+  double turned_on_floor = 0.0;  ///< ∫|ω| dt after the first contact [rad]
+  double last_change = 0.0;      ///< when the contact set (features) last changed [s]
+  Eigen::Vector3d position_at_1s = Eigen::Vector3d::Zero();
+  double max_speed_late = 0.0;        ///< over t > 1 s [m/s]
+  double max_penetration_late = 0.0;  ///< over t > 1 s [m]
+};
+
+/// Steps `run` (over `sim`) until `duration` [s] (> 1) and records body 0 as a Toss.
+inline Toss RunToss(Simulator* sim, Runner* run, double duration) {
+  Toss toss;
+  long signature = -1;  // the contact set of the last step
+  const double dt = sim->options().time_step;
+  while (sim->time() < duration && run->finite()) {
+    const StepStatistics& stats = run->Step();
+    const BodyState& s = sim->state()[0];
+    if (toss.first_contact < 0.0 && !sim->contacts().empty()) toss.first_contact = sim->time();
+    if (toss.first_contact >= 0.0) toss.turned_on_floor += s.angular_velocity.norm() * dt;
+    long sig = 0;
+    for (const ContactState& c : sim->contacts()) sig = sig * 64 + c.feature + 1;
+    if (sig != signature) {
+      signature = sig;
+      toss.last_change = sim->time();
+    }
+    if (std::abs(sim->time() - 1.0) < 0.5 * dt) toss.position_at_1s = s.position;
+    if (sim->time() > 1.0) {
+      toss.max_penetration_late = std::max(toss.max_penetration_late, stats.max_penetration);
+      toss.max_speed_late =
+          std::max(toss.max_speed_late, MaxPointSpeed(sim->scene(), sim->state(), 0));
+    }
+  }
+  return toss;
+}
+
 }  // namespace nonsmooth_sim::scene_test
 
 #endif  // NONSMOOTH_SIM_TEST_SCENES_SCENE_TEST_SUPPORT_H_
