@@ -180,7 +180,7 @@ TEST(PlaneCylinder, RollingOnItsRimKeepsFeatureAndContinuity) {
   constexpr int kSteps = 3000;
   constexpr double kStep = 1e-3;
   ContactGeometry previous;
-  Eigen::Isometry3d previous_pose;
+  Eigen::Isometry3d previous_pose = Eigen::Isometry3d::Identity();
   for (int i = 0; i <= kSteps; ++i) {
     const double t = i * kStep;
     const double heading = 0.7 * t;

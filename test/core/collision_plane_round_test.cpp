@@ -176,7 +176,7 @@ TEST(PlaneEllipsoid, RollingContactPointIsContinuous) {
   constexpr int kSteps = 4000;
   constexpr double kStep = 2 * kPi / 1000;  // four turns
   ContactGeometry previous;
-  Eigen::Isometry3d previous_pose;
+  Eigen::Isometry3d previous_pose = Eigen::Isometry3d::Identity();
   double largest_ratio = 0.0;
   for (int i = 0; i <= kSteps; ++i) {
     const double t = i * kStep;
