@@ -20,7 +20,6 @@ namespace nonsmooth_sim {
 namespace {
 
 using scene_test::LoadShippedScene;
-using scene_test::Runner;
 
 constexpr double kCircumradius = 0.011;  // [m], scripts/dev/make_d20
 const double kEdge = kCircumradius / std::sin(2.0 * kPi / 5.0);
@@ -51,33 +50,30 @@ TEST(D20, TheMeshHullIsTheIcosahedron) {
 }
 
 TEST(D20, LandsTumblesAndRestsOnOneFace) {
-  SimulatorOptions options;
-  options.time_step = 1e-4;
-  Simulator sim(LoadShippedScene("d20"), options);
-  Runner run(&sim);
-  const scene_test::Toss toss = scene_test::RunToss(&sim, &run, 2.0);
-  const BodyState& s = sim.state()[0];
+  const scene_test::Toss toss = scene_test::TossShippedScene("d20", 2.0);
+  const BodyState& s = toss.end;
   // the face it rests on: the one whose outward normal is closest to −ẑ
-  const ConvexHull& hull = HullOf(sim.scene());
+  const Scene scene = LoadShippedScene("d20");
+  const ConvexHull& hull = HullOf(scene);
   const Eigen::Matrix3d r = s.orientation.normalized().toRotationMatrix();
   double down = -1.0;
   for (const Eigen::Vector3d& n : hull.face_normal) down = std::max(down, -(r * n).z());
   std::printf("first contact %.4f s, turned %.2f rad on the floor, contacts settled at %.4f s "
               "(%zu contacts), face tilt %.2e rad, z_S - inradius = %.2e m, drift %.2e m, max "
               "speed %.2e m/s over the last second, max penetration %.2e m\n",
-              toss.first_contact, toss.turned_on_floor, toss.last_change, sim.contacts().size(),
+              toss.first_contact, toss.turned_on_floor, toss.last_change, toss.end_contacts,
               std::acos(std::min(1.0, down)), s.position.z() - kInradius,
-              (s.position - toss.position_at_1s).norm(), toss.max_speed_late, run.max_penetration());
+              (s.position - toss.position_at_1s).norm(), toss.max_speed_late, toss.max_penetration);
   EXPECT_GT(toss.first_contact, 0.0);
   EXPECT_GT(toss.turned_on_floor, 0.3);
-  EXPECT_EQ(sim.contacts().size(), 3u);
+  EXPECT_EQ(toss.end_contacts, 3u);
   EXPECT_GT(down, std::cos(1e-3));
   EXPECT_NEAR(s.position.z(), kInradius, 5.0 * kGapCorrectionSlop);
   EXPECT_LT(toss.last_change, 1.0);
   EXPECT_LT(toss.max_speed_late, 1e-12);
   EXPECT_LT((s.position - toss.position_at_1s).norm(), 1e-12);
-  EXPECT_LE(run.max_energy_excess(), 0.0) << "at t = " << run.max_energy_excess_time();
-  EXPECT_TRUE(run.finite());
+  EXPECT_LE(toss.max_energy_excess, 0.0) << "at t = " << toss.max_energy_excess_time;
+  EXPECT_TRUE(toss.finite);
 }
 
 }  // namespace

@@ -19,28 +19,21 @@
 namespace nonsmooth_sim {
 namespace {
 
-using scene_test::LoadShippedScene;
-using scene_test::Runner;
-
 constexpr double kHalfSide = 0.008;  // [m]
 
 TEST(Die, LandsTumblesAndRestsOnOneFace) {
-  SimulatorOptions options;
-  options.time_step = 1e-4;
-  Simulator sim(LoadShippedScene("die"), options);
-  Runner run(&sim);
-  const scene_test::Toss toss = scene_test::RunToss(&sim, &run, 2.0);
-  const BodyState& s = sim.state()[0];
+  const scene_test::Toss toss = scene_test::TossShippedScene("die", 2.0);
+  const BodyState& s = toss.end;
   // the face it rests on: the body axis closest to the vertical
   const Eigen::Matrix3d r = s.orientation.normalized().toRotationMatrix();
   const double vertical = r.row(2).cwiseAbs().maxCoeff();  // max_j |e_j·ẑ|
   std::printf("first contact %.4f s, turned %.2f rad on the floor, contacts settled at %.4f s "
               "(%zu contacts), axis tilt %.2e rad, z_S - s/2 = %.2e m, drift %.2e m, max speed "
               "%.2e m/s and penetration %.2e m over the last second, max penetration %.2e m\n",
-              toss.first_contact, toss.turned_on_floor, toss.last_change, sim.contacts().size(),
+              toss.first_contact, toss.turned_on_floor, toss.last_change, toss.end_contacts,
               std::acos(std::min(1.0, vertical)), s.position.z() - kHalfSide,
               (s.position - toss.position_at_1s).norm(), toss.max_speed_late,
-              toss.max_penetration_late, run.max_penetration());
+              toss.max_penetration_late, toss.max_penetration);
   // lands and tumbles
   EXPECT_GT(toss.first_contact, 0.1);
   EXPECT_LT(toss.first_contact, 0.2);
@@ -57,8 +50,8 @@ TEST(Die, LandsTumblesAndRestsOnOneFace) {
   // no drift, no sinking
   EXPECT_LT((s.position - toss.position_at_1s).norm(), 1e-12);
   EXPECT_LT(toss.max_penetration_late, 5.0 * kGapCorrectionSlop);
-  EXPECT_LE(run.max_energy_excess(), 0.0) << "at t = " << run.max_energy_excess_time();
-  EXPECT_TRUE(run.finite());
+  EXPECT_LE(toss.max_energy_excess, 0.0) << "at t = " << toss.max_energy_excess_time;
+  EXPECT_TRUE(toss.finite);
 }
 
 }  // namespace

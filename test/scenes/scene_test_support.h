@@ -194,8 +194,8 @@ inline double MaxPointSpeed(const Scene& scene, const std::vector<BodyState>& st
 }
 
 /// What a tossed body (body 0: the dice) did over a run: when it first touched, how far it turned
-/// on the floor, when its set of contacts last changed, and after t = 1 s its largest point speed
-/// and penetration and its position at 1 s (for the drift).
+/// on the floor, when its set of contacts last changed, after t = 1 s its largest point speed
+/// and penetration and its position at 1 s (for the drift), and how the run ended.
 struct Toss {
   double first_contact = -1.0;   ///< [s], -1: never
   double turned_on_floor = 0.0;  ///< ∫|ω| dt after the first contact [rad]
@@ -203,31 +203,48 @@ struct Toss {
   Eigen::Vector3d position_at_1s = Eigen::Vector3d::Zero();
   double max_speed_late = 0.0;        ///< over t > 1 s [m/s]
   double max_penetration_late = 0.0;  ///< over t > 1 s [m]
+  BodyState end;                      ///< the state at the end
+  std::size_t end_contacts = 0;       ///< closed contacts at the end
+  double max_penetration = 0.0;       ///< over the run (Runner's) [m]
+  double max_energy_excess = 0.0;     ///< Runner's [J]
+  double max_energy_excess_time = 0.0;
+  bool finite = true;
 };
 
-/// Steps `run` (over `sim`) until `duration` [s] (> 1) and records body 0 as a Toss.
-inline Toss RunToss(Simulator* sim, Runner* run, double duration) {
+/// urdf/<scene>.urdf tossed from config/<scene>.yaml, moreau at Δt = 1e-4 s for `duration` [s]
+/// (> 1), body 0 recorded as a Toss.
+inline Toss TossShippedScene(const std::string& scene, double duration) {
+  SimulatorOptions options;
+  options.time_step = 1e-4;
+  Simulator sim(LoadShippedScene(scene), options);
+  Runner run(&sim);
   Toss toss;
   long signature = -1;  // the contact set of the last step
-  const double dt = sim->options().time_step;
-  while (sim->time() < duration && run->finite()) {
-    const StepStatistics& stats = run->Step();
-    const BodyState& s = sim->state()[0];
-    if (toss.first_contact < 0.0 && !sim->contacts().empty()) toss.first_contact = sim->time();
+  const double dt = options.time_step;
+  while (sim.time() < duration && run.finite()) {
+    const StepStatistics& stats = run.Step();
+    const BodyState& s = sim.state()[0];
+    if (toss.first_contact < 0.0 && !sim.contacts().empty()) toss.first_contact = sim.time();
     if (toss.first_contact >= 0.0) toss.turned_on_floor += s.angular_velocity.norm() * dt;
     long sig = 0;
-    for (const ContactState& c : sim->contacts()) sig = sig * 64 + c.feature + 1;
+    for (const ContactState& c : sim.contacts()) sig = sig * 64 + c.feature + 1;
     if (sig != signature) {
       signature = sig;
-      toss.last_change = sim->time();
+      toss.last_change = sim.time();
     }
-    if (std::abs(sim->time() - 1.0) < 0.5 * dt) toss.position_at_1s = s.position;
-    if (sim->time() > 1.0) {
+    if (std::abs(sim.time() - 1.0) < 0.5 * dt) toss.position_at_1s = s.position;
+    if (sim.time() > 1.0) {
       toss.max_penetration_late = std::max(toss.max_penetration_late, stats.max_penetration);
       toss.max_speed_late =
-          std::max(toss.max_speed_late, MaxPointSpeed(sim->scene(), sim->state(), 0));
+          std::max(toss.max_speed_late, MaxPointSpeed(sim.scene(), sim.state(), 0));
     }
   }
+  toss.end = sim.state()[0];
+  toss.end_contacts = sim.contacts().size();
+  toss.max_penetration = run.max_penetration();
+  toss.max_energy_excess = run.max_energy_excess();
+  toss.max_energy_excess_time = run.max_energy_excess_time();
+  toss.finite = run.finite();
   return toss;
 }
 
