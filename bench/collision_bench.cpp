@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 #include "nonsmooth_sim/core/collision/plane_ellipsoid.h"
 #include "nonsmooth_sim/core/collision/plane_hull.h"
+#include "nonsmooth_sim/core/collision/plane_revolution.h"
 #include "nonsmooth_sim/core/collision/plane_sphere.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/collision/sphere_capsule.h"
@@ -50,6 +52,15 @@ Shape Example(ShapeType type) {
       }
       return Shape::Hull(MakeConvexHull(v, {4, 0, 2, 3, 1, 4, 4, 5, 7, 6, 4, 0, 4, 6, 2,
                                             4, 1, 3, 7, 5, 4, 0, 1, 5, 4, 4, 2, 6, 7, 3}));
+    }
+    case ShapeType::kRevolution: {
+      // an egg's profile (a mesh's comes from scene_io): 91 points of a half-ellipse
+      std::vector<Eigen::Vector2d> meridian;
+      for (int i = 0; i <= 90; ++i) {
+        const double t = 3.14159265358979323846 * i / 90;
+        meridian.emplace_back(0.08 * std::sin(t), 0.12 * std::cos(t));
+      }
+      return Shape::Revolution(MakeRevolutionProfile(meridian, 1e-5));
     }
   }
   return Shape::Sphere(0.1);
@@ -105,6 +116,7 @@ NONSMOOTH_SIM_PAIR_BENCH(plane_ellipsoid, kPlane, kEllipsoid, CollidePlaneEllips
 NONSMOOTH_SIM_PAIR_BENCH(plane_cylinder, kPlane, kCylinder, CollidePlaneCylinder);
 NONSMOOTH_SIM_PAIR_BENCH(plane_box, kPlane, kBox, CollidePlaneBox);
 NONSMOOTH_SIM_PAIR_BENCH(plane_hull, kPlane, kConvexHull, CollidePlaneHull);
+NONSMOOTH_SIM_PAIR_BENCH(plane_revolution, kPlane, kRevolution, CollidePlaneRevolution);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_sphere, kSphere, kSphere, CollideSphereSphere);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_capsule, kSphere, kCapsule, CollideSphereCapsule);
 NONSMOOTH_SIM_PAIR_BENCH(sphere_box, kSphere, kBox, CollideSphereBox);

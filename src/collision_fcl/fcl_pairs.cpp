@@ -94,6 +94,7 @@ void MakeGeometry(const Shape& shape, FclGeometry* geometry) {
       return;
     case ShapeType::kBox: geometry->emplace<fcl::Boxd>(2.0 * shape.half_extents); return;
     case ShapeType::kConvexHull:
+    case ShapeType::kRevolution:  // the hull of its tessellation
       if (shape.hull) geometry->emplace<std::shared_ptr<const fcl::Convexd>>(ConvexOf(shape.hull));
       return;
   }
@@ -150,6 +151,9 @@ Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose,
       break;
     case ShapeType::kConvexHull:
       if (shape.hull) x = shape.hull->vertices[HullSupportVertex(*shape.hull, d)];
+      break;
+    case ShapeType::kRevolution:
+      if (shape.revolution) x = RevolutionSupport(*shape.revolution, d);
       break;
   }
   return pose * x;
@@ -498,7 +502,14 @@ void RegisterFclPairs(CollisionTable* table) {
                                      {ShapeType::kEllipsoid, ShapeType::kConvexHull},
                                      {ShapeType::kCylinder, ShapeType::kConvexHull},
                                      {ShapeType::kBox, ShapeType::kConvexHull},
-                                     {ShapeType::kConvexHull, ShapeType::kConvexHull}};
+                                     {ShapeType::kConvexHull, ShapeType::kConvexHull},
+                                     {ShapeType::kSphere, ShapeType::kRevolution},
+                                     {ShapeType::kCapsule, ShapeType::kRevolution},
+                                     {ShapeType::kEllipsoid, ShapeType::kRevolution},
+                                     {ShapeType::kCylinder, ShapeType::kRevolution},
+                                     {ShapeType::kBox, ShapeType::kRevolution},
+                                     {ShapeType::kConvexHull, ShapeType::kRevolution},
+                                     {ShapeType::kRevolution, ShapeType::kRevolution}};
   for (const auto& pair : kPairs) table->Register(pair[0], pair[1], &CollideFcl);
 }
 

@@ -70,7 +70,8 @@ void AdaptiveStepper::UpdateScales() {
     const ShapeType type = c.shape.type;
     if (type != ShapeType::kSphere) {
       e.radius = BoundingRadius(c.shape);
-      if (type == ShapeType::kCylinder || type == ShapeType::kCapsule) {
+      if (type == ShapeType::kCylinder || type == ShapeType::kCapsule ||
+          type == ShapeType::kRevolution) {
         e.axis = c.pose.linear().col(2);  // a turn about its own axis moves nothing
       } else {
         e.turns = true;
@@ -93,9 +94,9 @@ double AdaptiveStepper::ErrorEstimate(double h) const {
                       (x.linear_velocity - y.linear_velocity).norm() * h / size,
                       (x.angular_velocity - y.angular_velocity).norm() * h});
   }
-  // the orientation by what it moves of each collider's surface: a sphere's centre, a cylinder's
-  // or capsule's axis, every turn of a box or an ellipsoid (the spin of a top about its axis of
-  // symmetry moves nothing and is left free; a spinning die's is not)
+  // the orientation by what it moves of each collider's surface: a sphere's centre, a cylinder's,
+  // capsule's or body of revolution's axis, every turn of a box, an ellipsoid or a hull (the spin
+  // of a top about its axis of symmetry moves nothing and is left free; a spinning die's is not)
   for (const ColliderExtent& e : extents_) {
     const BodyState& x = now[static_cast<std::size_t>(e.body)];
     const BodyState& y = end_single_[static_cast<std::size_t>(e.body)];

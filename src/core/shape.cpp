@@ -36,7 +36,7 @@ namespace {
 
 constexpr ShapeType kAllShapeTypes[kShapeTypeCount] = {
     ShapeType::kPlane,    ShapeType::kSphere, ShapeType::kCapsule,   ShapeType::kEllipsoid,
-    ShapeType::kCylinder, ShapeType::kBox,    ShapeType::kConvexHull};
+    ShapeType::kCylinder, ShapeType::kBox,    ShapeType::kConvexHull, ShapeType::kRevolution};
 
 // "<where>: <what> = <value>: must be <allowed>"
 [[noreturn]] void Reject(const std::string& where, const std::string& what, double value,
@@ -89,6 +89,7 @@ std::string_view ShapeTypeName(ShapeType type) {
     case ShapeType::kCylinder: return "cylinder";
     case ShapeType::kBox: return "box";
     case ShapeType::kConvexHull: return "convex_hull";
+    case ShapeType::kRevolution: return "revolution";
   }
   return "unknown";
 }
@@ -147,6 +148,15 @@ Shape Shape::Hull(std::shared_ptr<const ConvexHull> hull) {
   Shape shape;
   shape.type = ShapeType::kConvexHull;
   shape.hull = std::move(hull);
+  return shape;
+}
+
+Shape Shape::Revolution(std::shared_ptr<const RevolutionProfile> profile,
+                        std::shared_ptr<const ConvexHull> tessellation) {
+  Shape shape;
+  shape.type = ShapeType::kRevolution;
+  shape.revolution = std::move(profile);
+  shape.hull = std::move(tessellation);
   return shape;
 }
 
@@ -252,6 +262,8 @@ double BoundingRadius(const Shape& shape) {
     case ShapeType::kBox: return shape.half_extents.norm();
     // the farthest vertex from the shape frame's origin
     case ShapeType::kConvexHull: return shape.hull ? shape.hull->bounding_radius : 0.0;
+    case ShapeType::kRevolution:
+      return shape.revolution ? shape.revolution->bounding_radius : 0.0;
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -281,8 +293,14 @@ void ValidateShape(const Shape& shape, const std::string& where) {
       }
       RequirePositive(where, "hull bounding radius", shape.hull->bounding_radius);
       return;
+    case ShapeType::kRevolution:
+      if (!shape.revolution || shape.revolution->arcs.empty()) {
+        throw std::invalid_argument(where + ": revolution without its profile");
+      }
+      RequirePositive(where, "profile bounding radius", shape.revolution->bounding_radius);
+      return;
   }
-  Reject(where, "type", static_cast<int>(shape.type), "a ShapeType (0 to 6)");
+  Reject(where, "type", static_cast<int>(shape.type), "a ShapeType (0 to 7)");
 }
 
 double ShapeVolume(const Shape& shape) {
@@ -299,6 +317,9 @@ double ShapeVolume(const Shape& shape) {
     case ShapeType::kConvexHull:
       if (!shape.hull) throw std::invalid_argument("ShapeVolume: convex_hull without its hull");
       return HullVolume(*shape.hull);
+    case ShapeType::kRevolution:
+      if (!shape.revolution) throw std::invalid_argument("ShapeVolume: revolution without profile");
+      return RevolutionVolume(*shape.revolution);
   }
   throw std::invalid_argument("ShapeVolume: unknown shape type");
 }
@@ -337,9 +358,10 @@ Eigen::Matrix3d ShapeUnitInertia(const Shape& shape) {
                       m * (h2.x() + h2.y()) / 3.0);
     }
     case ShapeType::kConvexHull:
+    case ShapeType::kRevolution:
       throw std::invalid_argument(
-          "ShapeUnitInertia: not defined for a convex hull (its body's inertia is its URDF "
-          "<inertial>)");
+          "ShapeUnitInertia: not defined for a convex hull or a body of revolution (its body's "
+          "inertia is its URDF <inertial>)");
   }
   throw std::invalid_argument("ShapeUnitInertia: unknown shape type");
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nonsmooth_sim/mesh/mesh_hull.h"
+#include "nonsmooth_sim/mesh/mesh_revolution.h"
 #include "nonsmooth_sim/scene_io/bounded_input.h"
 #include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
@@ -172,23 +173,53 @@ std::string ResolveMeshFilename(const std::string& filename, const std::string& 
   return (fs::path(base_directory) / path).string();
 }
 
-std::shared_ptr<const ConvexHull> LoadMeshHull(const std::string& path,
-                                               const Eigen::Vector3d& scale, int max_vertices,
-                                               std::size_t max_bytes) {
+namespace {
+
+void CheckScale(const Eigen::Vector3d& scale) {
   for (int i = 0; i < 3; ++i) {
     if (!(scale[i] >= kMinMeshScale && scale[i] <= kMaxMeshScale)) {
       Refuse("scale " + Format(scale[i]) + ": allowed: each component in [" +
              Format(kMinMeshScale) + ", " + Format(kMaxMeshScale) + "]");
     }
   }
+}
+
+// `load()`, its refusals each saying what is allowed
+template <typename Load>
+auto WithAllowed(Load load) {
   try {
-    return HullOfFile(path, scale, max_vertices, max_bytes);
+    return load();
   } catch (const std::invalid_argument& e) {
-    // every refusal says what is allowed
     const std::string reason = e.what();
     if (reason.find("allowed") != std::string::npos) throw;
     Refuse(reason + "; allowed: " + kAllowedMesh);
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const ConvexHull> LoadMeshHull(const std::string& path,
+                                               const Eigen::Vector3d& scale, int max_vertices,
+                                               std::size_t max_bytes) {
+  CheckScale(scale);
+  return WithAllowed([&] { return HullOfFile(path, scale, max_vertices, max_bytes); });
+}
+
+MeshRevolution LoadMeshRevolution(const std::string& path, const Eigen::Vector3d& scale,
+                                  const Eigen::Vector3d& axis, std::optional<double> tolerance,
+                                  std::size_t max_bytes) {
+  CheckScale(scale);
+  return WithAllowed([&] {
+    // the hull's checks (a solid of the loader's sizes) first
+    HullOfFile(path, scale, kMaxHullVerticesBound, max_bytes);
+    const std::string bytes = ReadBoundedFile(path, max_bytes, "a mesh file (STL, OBJ, DAE)");
+    const std::string extension = fs::path(path).extension().string();
+    std::vector<Eigen::Vector3d> points =
+        mesh::ReadMeshVertices(bytes, extension.empty() ? "" : extension.substr(1));
+    for (Eigen::Vector3d& p : points) p = p.cwiseProduct(scale);
+    const mesh::BodyOfRevolution fit = mesh::FitBodyOfRevolution(points, axis, tolerance);
+    return MeshRevolution{fit.shape, fit.frame, fit.deviation, fit.tolerance};
+  });
 }
 
 }  // namespace nonsmooth_sim::scene_io

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <type_traits>
 
 #include "link_groups.h"
 #include "nonsmooth_sim/core/collision/collision.h"
@@ -409,7 +410,18 @@ class Builder {
         if (it != overrides->second.end()) override = &it->second;
       }
       Collider collider;
-      if (override != nullptr) {
+      Eigen::Isometry3d shape_frame = Eigen::Isometry3d::Identity();  // in the collision's
+      if (override != nullptr && override->revolution) {
+        if (!collision->geometry || collision->geometry->type != urdf::Geometry::MESH) {
+          throw UrdfError("urdf: " + override->where + ": <body_of_revolution> reads the "
+                          "collision's <mesh>, but " + label + " has none; allowed: a <mesh> "
+                          "collision");
+        }
+        const MeshRevolution body = MeshBodyOfRevolution(
+            static_cast<const urdf::Mesh&>(*collision->geometry), *override->revolution, label);
+        collider.shape = body.shape;
+        shape_frame = body.frame;
+      } else if (override != nullptr) {
         if (override->shape.type == ShapeType::kPlane && body != kWorld) {
           throw UrdfError("urdf: " + override->where + ": a plane is a half-space fixed in the "
                           "world, but " + LinkLabel(link.name) + " is part of a free body; "
@@ -449,7 +461,7 @@ class Builder {
           collision->name.empty() ? link.name + "_collision" + std::to_string(k) : collision->name;
       ClaimName(collider.name, link.name, label);
       collider.body = body;
-      collider.pose = frame * ToEigen(collision->origin);
+      collider.pose = frame * ToEigen(collision->origin) * shape_frame;
       collider.law = LawFromSurface(surface, options_);
       CheckCoordinates(label + (body == kWorld ? ": its world position (the joint origins from "
                                                  "the root)"
@@ -485,14 +497,31 @@ class Builder {
   // The convex hull of a <mesh> (mesh_source.h); one line naming the collision and the file if
   // it cannot be one.
   std::shared_ptr<const ConvexHull> MeshHull(const urdf::Mesh& mesh, const std::string& label) {
+    return ReadMesh(mesh, label, [&](const std::string& path) {
+      return LoadMeshHull(path, ToEigen(mesh.scale), options_.max_hull_vertices,
+                          options_.max_bytes);
+    });
+  }
+
+  // A <mesh> as a body of revolution (mesh_source.h), the same way.
+  MeshRevolution MeshBodyOfRevolution(const urdf::Mesh& mesh, const RevolutionRequest& request,
+                                      const std::string& label) {
+    return ReadMesh(mesh, label, [&](const std::string& path) {
+      return LoadMeshRevolution(path, ToEigen(mesh.scale), request.axis, request.tolerance,
+                                options_.max_bytes);
+    });
+  }
+
+  template <typename Load>
+  std::invoke_result_t<Load, const std::string&> ReadMesh(const urdf::Mesh& mesh,
+                                                          const std::string& label, Load load) {
     std::string path;
     try {
       const char* environment = std::getenv("ROS_PACKAGE_PATH");
       path = ResolveMeshFilename(
           mesh.filename, options_.mesh_directory,
           options_.ros_package_path.value_or(environment != nullptr ? environment : ""));
-      return LoadMeshHull(path, ToEigen(mesh.scale), options_.max_hull_vertices,
-                          options_.max_bytes);
+      return load(path);
     } catch (const std::invalid_argument& e) {
       throw UrdfError("urdf: " + label + ": mesh " + Quoted(mesh.filename) +
                       (path.empty() || path == mesh.filename ? "" : " (" + path + ")") + ": " +

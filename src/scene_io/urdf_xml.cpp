@@ -264,7 +264,8 @@ void RequireNoChildren(const XMLElement* element) {
 // <collision name="c"> inside <nonsmooth_sim>: exactly one shape URDF cannot express.
 ShapeOverride ReadShapeOverride(const XMLElement* collision) {
   static const Names kShapes = {
-      "ellipsoid semi_axes=\"a b c\"", "capsule radius=\"r\" length=\"l\"", "plane"};
+      "ellipsoid semi_axes=\"a b c\"", "capsule radius=\"r\" length=\"l\"", "plane",
+      "body_of_revolution axis=\"x y z\" tolerance=\"t\""};
   RequireOnlyAttributes(collision, {"name"});
   const char* name = collision->Attribute("name");
   if (name == nullptr || *name == '\0') {
@@ -297,6 +298,24 @@ ShapeOverride ReadShapeOverride(const XMLElement* collision) {
   } else if (tag == "plane") {
     RequireOnlyAttributes(element, {});
     result.shape = Shape::Plane();
+  } else if (tag == "body_of_revolution") {
+    // of the collision's <mesh>: axis (default 0 0 1) and tolerance [m] (default 1 % of its size)
+    RequireOnlyAttributes(element, {"axis", "tolerance"});
+    RevolutionRequest request;
+    std::vector<double> values;
+    if (NumbersAttribute(element, "axis", 3, &values)) {
+      request.axis = Eigen::Vector3d(values[0], values[1], values[2]);
+      if (!(request.axis.norm() > 0.0)) {
+        Fail(element, "axis=\"" + std::string(element->Attribute("axis")) +
+                          "\" is not a direction; expected three numbers, not all 0");
+      }
+    }
+    if (element->Attribute("tolerance") != nullptr) {
+      const double tolerance = RequirePositive(element, "tolerance", 1)[0];
+      RequireInRange(element, "tolerance", {tolerance}, kMinLength, kMaxLength, " m");
+      request.tolerance = tolerance;
+    }
+    result.revolution = request;
   } else {
     Fail(element, "unknown shape <" + tag + ">; allowed: " + Join(kShapes, "<", "/>") +
                       " (sphere, box and cylinder: use the URDF <geometry>)");

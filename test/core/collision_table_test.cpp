@@ -19,6 +19,7 @@
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 #include "nonsmooth_sim/core/collision/plane_ellipsoid.h"
 #include "nonsmooth_sim/core/collision/plane_hull.h"
+#include "nonsmooth_sim/core/collision/plane_revolution.h"
 #include "nonsmooth_sim/core/collision/plane_sphere.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/collision/sphere_capsule.h"
@@ -45,6 +46,7 @@ const std::vector<ClosedForm>& ClosedForms() {
       {ShapeType::kPlane, ShapeType::kCylinder, &CollidePlaneCylinder},
       {ShapeType::kPlane, ShapeType::kBox, &CollidePlaneBox},
       {ShapeType::kPlane, ShapeType::kConvexHull, &CollidePlaneHull},
+      {ShapeType::kPlane, ShapeType::kRevolution, &CollidePlaneRevolution},
       {ShapeType::kSphere, ShapeType::kSphere, &CollideSphereSphere},
       {ShapeType::kSphere, ShapeType::kCapsule, &CollideSphereCapsule},
       {ShapeType::kSphere, ShapeType::kBox, &CollideSphereBox},

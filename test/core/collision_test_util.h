@@ -69,7 +69,8 @@ inline Shape RandomShape(ShapeType type, std::mt19937& rng, double lo = 0.05, do
     case ShapeType::kEllipsoid: return Shape::Ellipsoid({length(), length(), length()});
     case ShapeType::kCylinder: return Shape::Cylinder(length(), length());
     case ShapeType::kBox: return Shape::Box({length(), length(), length()});
-    case ShapeType::kConvexHull: break;  // hulls are written by their tests (plane_hull)
+    case ShapeType::kConvexHull:  // hulls are written by their tests (plane_hull)
+    case ShapeType::kRevolution: break;  // profiles too (revolution_profile_test)
   }
   return Shape::Sphere(lo);
 }
@@ -128,6 +129,22 @@ inline Eigen::Vector3d Support(const Shape& shape, const Eigen::Isometry3d& pose
       }
       break;
     }
+    case ShapeType::kRevolution: {
+      // the best over every arc of its point whose normal is nearest the direction's
+      const double rho = std::hypot(d.x(), d.y());
+      const double theta = std::atan2(rho, d.z());
+      const Eigen::Vector3d radial = rho > 0.0 ? Eigen::Vector3d(d.x() / rho, d.y() / rho, 0.0)
+                                               : Eigen::Vector3d::UnitX();
+      double best = -kInf, begin = 0.0;
+      for (const RevolutionArc& arc : shape.revolution->arcs) {
+        const double t = std::clamp(theta, begin, arc.theta_end);
+        const Eigen::Vector2d p = arc.centre + arc.radius * Eigen::Vector2d(std::sin(t), std::cos(t));
+        const Eigen::Vector3d candidate = p.x() * radial + p.y() * Eigen::Vector3d::UnitZ();
+        if (d.dot(candidate) > best) best = d.dot(candidate), x = candidate;
+        begin = arc.theta_end;
+      }
+      break;
+    }
   }
   return pose * x;
 }
@@ -165,6 +182,7 @@ inline double SurfaceResidual(const Shape& shape, const Eigen::Isometry3d& pose,
       }
       return residual;
     }
+    case ShapeType::kRevolution: break;  // not used: its tests check supports
   }
   return kInf;
 }

@@ -42,7 +42,8 @@ bool Contains(const Shape& s, const Eigen::Vector3d& y) {
       return y.x() * y.x() + y.y() * y.y() <= s.radius * s.radius &&
              std::abs(y.z()) <= s.half_length;
     case ShapeType::kBox: return (y.cwiseAbs() - s.half_extents).maxCoeff() <= 0.0;
-    case ShapeType::kConvexHull: break;  // tested with its pair (collision_plane_hull_test.cpp)
+    case ShapeType::kConvexHull:  // tested with its pair (collision_plane_hull_test.cpp)
+    case ShapeType::kRevolution: break;  // and revolution_profile_test.cpp
   }
   return false;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -36,6 +37,35 @@ inline TriangleMesh BoxMesh(const Eigen::Vector3d& h) {
   for (const auto& q : quads) {
     m.triangles.push_back({q[0], q[1], q[2]});
     m.triangles.push_back({q[0], q[2], q[3]});
+  }
+  return m;
+}
+
+/// The surface of revolution about z of `meridian` ((ρ, z) from one end to the other; a point with
+/// ρ = 0 is a pole, one vertex), each ring `sectors` vertices, the first at azimuth `phase` [rad].
+inline TriangleMesh RevolutionMesh(const std::vector<Eigen::Vector2d>& meridian, int sectors,
+                                   double phase = 0.0) {
+  TriangleMesh m;
+  std::vector<std::vector<int>> rings;
+  for (const Eigen::Vector2d& p : meridian) {
+    std::vector<int> ring;
+    for (int s = 0; s < (p.x() > 0.0 ? sectors : 1); ++s) {
+      const double phi = phase + 2.0 * M_PI * s / sectors;
+      ring.push_back(static_cast<int>(m.vertices.size()));
+      m.vertices.emplace_back(p.x() * std::cos(phi), p.x() * std::sin(phi), p.y());
+    }
+    rings.push_back(ring);
+  }
+  const auto at = [&](std::size_t ring, int s) {
+    return rings[ring][s % static_cast<int>(rings[ring].size())];
+  };
+  for (std::size_t r = 0; r + 1 < rings.size(); ++r) {
+    for (int s = 0; s < sectors; ++s) {
+      if (rings[r].size() > 1) m.triangles.push_back({at(r, s), at(r + 1, s), at(r, s + 1)});
+      if (rings[r + 1].size() > 1) {
+        m.triangles.push_back({at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
+      }
+    }
   }
   return m;
 }

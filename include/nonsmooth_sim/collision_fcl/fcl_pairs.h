@@ -3,7 +3,9 @@
 // capsule–ellipsoid, capsule–cylinder, capsule–box, ellipsoid–ellipsoid, ellipsoid–cylinder,
 // ellipsoid–box, cylinder–cylinder, cylinder–box, box–box, and a convex hull (a mesh's, shape.h)
 // against every shape but the plane (fcl::Convex over the hull's vertices and faces; the
-// refinement below also starts from the hull's face normals). A separate library: the core stays
+// refinement below also starts from the hull's face normals), and a body of revolution against
+// the same (fcl::Convex over the hull of its tessellation for GJK; its supports, below, from its
+// smooth profile). A separate library: the core stays
 // Eigen-only.
 //
 // CollideFcl() maps FCL's answers onto ContactGeometry (collision.h). FCL's contact normal points

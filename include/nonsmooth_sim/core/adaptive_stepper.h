@@ -8,9 +8,9 @@
 // in a norm scaled per body (L: the farthest extent of its colliders from its centre of mass):
 //   ‖Δ‖ = max over bodies of max(|Δr_S| / L, |Δv_S| H / L, |Δω| H, |Δx_c| / L)
 // where Δx_c is how far the orientation error moves a collider c of the body: its centre, plus
-// for a cylinder or capsule its axis and for a box or ellipsoid any turn, times its bounding
-// radius (a turn about a sphere's centre or a cylinder's axis moves nothing: the spin phase of a
-// top is left free, the face a die shows is not).
+// for a cylinder, capsule or body of revolution its axis and for a box, ellipsoid or hull any
+// turn, times its bounding radius (a turn about a sphere's centre or a cylinder's axis moves
+// nothing: the spin phase of a top is left free, the face a die shows is not).
 // Velocities count by the displacement they make over the step, as DAE codes scale the error of
 // index-2 components by H: on a closed contact, the end velocity is held to the contact law at
 // every step, and one step of H and two of H/2 differ in it by O(H) (the Tippe-Top sliding:

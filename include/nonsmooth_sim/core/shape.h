@@ -10,11 +10,14 @@
 //   cylinder    radius r, half_length l (axis along z)           x² + y² ≤ r², |z| ≤ l
 //   box         half_extents (a, b, c)                           |x| ≤ a, |y| ≤ b, |z| ≤ c
 //   convex_hull hull: vertices v_i (and its faces)                the convex hull of the v_i
+//   revolution  profile about z (revolution_profile.h)           ρ ≤ the profile's ρ at z
 //
 // URDF conventions: <cylinder radius length> has its axis along z and length = 2l; <box size>
 // is the full size (2a, 2b, 2c). A convex hull comes from a mesh (mesh/mesh_hull.h): its
 // vertices are in the shape frame (the mesh's frame, scaled), not centred on its origin; its
-// inertia is never taken from it (a body's mass and inertia are its URDF <inertial>). The types
+// inertia is never taken from it (a body's mass and inertia are its URDF <inertial>). A body of
+// revolution comes from a mesh too (mesh/mesh_revolution.h): its profile, and the hull of a
+// tessellation of it for the pairs FCL collides (the plane's is closed form). The types
 // are ordered: the collision table (collision_table.h) is indexed by them and a pair function
 // takes its shapes in this order.
 #ifndef NONSMOOTH_SIM_CORE_SHAPE_H_
@@ -27,6 +30,8 @@
 #include <string_view>
 #include <vector>
 
+#include "nonsmooth_sim/core/revolution_profile.h"
+
 namespace nonsmooth_sim {
 
 enum class ShapeType : int {
@@ -36,11 +41,12 @@ enum class ShapeType : int {
   kEllipsoid,
   kCylinder,
   kBox,
-  kConvexHull
+  kConvexHull,
+  kRevolution
 };
-inline constexpr int kShapeTypeCount = 7;
+inline constexpr int kShapeTypeCount = 8;
 
-/// "plane", "sphere", "capsule", "ellipsoid", "cylinder", "box", "convex_hull".
+/// "plane", "sphere", "capsule", "ellipsoid", "cylinder", "box", "convex_hull", "revolution".
 std::string_view ShapeTypeName(ShapeType type);
 std::optional<ShapeType> ShapeTypeFromName(std::string_view name);
 
@@ -87,8 +93,11 @@ struct Shape {
   double half_length = 0.0;  ///< capsule (segment), cylinder (axis) [m]
   /// ellipsoid semi-axes, box half-extents, along the shape frame's x, y, z [m]
   Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();
-  /// convex_hull: its vertices and faces (shared; null for the other types)
+  /// convex_hull: its vertices and faces (shared; null for the other types); revolution: the
+  /// hull of a tessellation of its surface, for FCL (may be null)
   std::shared_ptr<const ConvexHull> hull;
+  /// revolution: its profile (shared; null for the other types)
+  std::shared_ptr<const RevolutionProfile> revolution;
 
   static Shape Plane();
   static Shape Sphere(double radius);
@@ -97,6 +106,8 @@ struct Shape {
   static Shape Cylinder(double radius, double half_length);
   static Shape Box(const Eigen::Vector3d& half_extents);
   static Shape Hull(std::shared_ptr<const ConvexHull> hull);
+  static Shape Revolution(std::shared_ptr<const RevolutionProfile> profile,
+                          std::shared_ptr<const ConvexHull> tessellation = nullptr);
 };
 
 /// Radius of the smallest sphere about the shape frame's origin that holds the shape [m]
@@ -105,13 +116,13 @@ double BoundingRadius(const Shape& shape);
 
 /// Throws std::invalid_argument naming `where` and the bad parameter (every length finite and
 /// > 0 where the type uses it; a capsule or cylinder half_length ≥ 0 resp. > 0; a convex hull
-/// present, with at least 4 vertices, all finite).
+/// present, with at least 4 vertices, all finite; a revolution's profile present, with arcs).
 void ValidateShape(const Shape& shape, const std::string& where);
 
 /// Volume [m³] and inertia about the shape frame's origin in its axes per unit density [m⁵]
 /// (the plane: not defined, throws std::invalid_argument). Used to build scenes of uniform
-/// bodies in code and tests. A convex hull: its volume; its inertia is not defined here (throws:
-/// a body with a hull takes its inertia from its URDF <inertial>).
+/// bodies in code and tests. A convex hull or a body of revolution: its volume; its inertia is not
+/// defined here (throws: a body with a mesh takes its inertia from its URDF <inertial>).
 double ShapeVolume(const Shape& shape);
 Eigen::Matrix3d ShapeUnitInertia(const Shape& shape);
 

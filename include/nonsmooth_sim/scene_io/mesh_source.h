@@ -16,11 +16,14 @@
 // hull must be a solid of the loader's sizes: its thinnest width at least kMinLength and its
 // farthest vertex from the link frame at most kMaxLength (urdf_scene.h, "Bounds").
 // The hull of each (file contents, format, scale, cap) is computed once per process and shared
-// (a cache of at most kMaxCachedMeshHulls hulls, safe to use from several threads).
+// (a cache of at most kMaxCachedMeshHulls hulls, safe to use from several threads). A body
+// of revolution (LoadMeshRevolution) is fitted to the file's vertices at each load.
 #ifndef NONSMOOTH_SIM_SCENE_IO_MESH_SOURCE_H_
 #define NONSMOOTH_SIM_SCENE_IO_MESH_SOURCE_H_
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -48,6 +51,21 @@ std::string ResolveMeshFilename(const std::string& filename, const std::string& 
 std::shared_ptr<const ConvexHull> LoadMeshHull(const std::string& path,
                                                const Eigen::Vector3d& scale,
                                                int max_vertices, std::size_t max_bytes);
+
+/// A mesh read as a smooth body of revolution (mesh/mesh_revolution.h).
+struct MeshRevolution {
+  Shape shape;               ///< revolution, in `frame`
+  Eigen::Isometry3d frame;   ///< the shape's frame in the mesh's (scaled) frame
+  double deviation = 0.0;    ///< [m]
+  double tolerance = 0.0;    ///< [m]
+};
+
+/// The mesh file `path`, scaled, as a body of revolution about `axis` within `tolerance` (unset:
+/// 1 % of its size): the file as LoadMeshHull reads it (its hull checked the same way), then
+/// mesh::FitBodyOfRevolution. Throws std::invalid_argument with the reason and what is allowed.
+MeshRevolution LoadMeshRevolution(const std::string& path, const Eigen::Vector3d& scale,
+                                  const Eigen::Vector3d& axis, std::optional<double> tolerance,
+                                  std::size_t max_bytes);
 
 }  // namespace nonsmooth_sim::scene_io
 

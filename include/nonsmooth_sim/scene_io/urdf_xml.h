@@ -31,10 +31,19 @@ struct LinkSurface {
   std::optional<FrictionSet> friction_set;
 };
 
+/// <body_of_revolution axis="x y z" tolerance="τ"/>: the collision's <mesh> as a smooth body of
+/// revolution (mesh/mesh_revolution.h).
+struct RevolutionRequest {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< in the mesh's frame, not 0
+  std::optional<double> tolerance;                  ///< [m], in [kMinLength, kMaxLength]
+};
+
 /// <nonsmooth_sim reference="link"><collision name="c"><ellipsoid|capsule|plane .../></collision>:
-/// a shape that replaces the URDF geometry of the link's collision "c" (its <origin> is kept).
+/// a shape that replaces the URDF geometry of the link's collision "c" (its <origin> is kept);
+/// or <body_of_revolution/>, which tells how to read its <mesh>.
 struct ShapeOverride {
   Shape shape;
+  std::optional<RevolutionRequest> revolution;  ///< set: `shape` is unused
   /// The element, for error lines: nonsmooth_sim reference="b" > collision "c" > plane (line 7)
   std::string where;
 };

@@ -12,6 +12,7 @@
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
 #include "nonsmooth_sim/core/collision/plane_ellipsoid.h"
 #include "nonsmooth_sim/core/collision/plane_hull.h"
+#include "nonsmooth_sim/core/collision/plane_revolution.h"
 #include "nonsmooth_sim/core/collision/plane_sphere.h"
 #include "nonsmooth_sim/core/collision/sphere_box.h"
 #include "nonsmooth_sim/core/collision/sphere_capsule.h"
@@ -34,6 +35,7 @@ CollisionTable CollisionTable::Defaults() {
   table.Register(ShapeType::kPlane, ShapeType::kCylinder, &CollidePlaneCylinder);
   table.Register(ShapeType::kPlane, ShapeType::kBox, &CollidePlaneBox);
   table.Register(ShapeType::kPlane, ShapeType::kConvexHull, &CollidePlaneHull);
+  table.Register(ShapeType::kPlane, ShapeType::kRevolution, &CollidePlaneRevolution);
   table.Register(ShapeType::kSphere, ShapeType::kSphere, &CollideSphereSphere);
   table.Register(ShapeType::kSphere, ShapeType::kCapsule, &CollideSphereCapsule);
   table.Register(ShapeType::kSphere, ShapeType::kBox, &CollideSphereBox);

@@ -22,8 +22,8 @@ class CollisionTable {
   /// An empty table: no pair has a function.
   CollisionTable() = default;
 
-  /// The core's closed forms: plane against sphere, capsule, ellipsoid, cylinder, box and convex
-  /// hull; sphere
+  /// The core's closed forms: plane against sphere, capsule, ellipsoid, cylinder, box, convex
+  /// hull and body of revolution; sphere
   /// against sphere, capsule and box; capsule against capsule.
   static CollisionTable Defaults();
 
