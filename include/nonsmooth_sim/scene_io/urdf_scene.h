@@ -74,7 +74,7 @@
 // the reason (not XML, no inertial on a body with collisions, mass ≤ 0, inertia not positive
 // definite, degenerate shapes, NaN or Inf in any number, a typo in a <nonsmooth_sim> block, a
 // collision name used twice, a static link with mass, a link with mass or collisions on a joint
-// that can move, ...). Overlapping bodies are not checked
+// that can move and is not held, a hold of a joint that does not exist or does not move, ...). Overlapping bodies are not checked
 // here (the simulator reports them).
 //
 // Bounds: what loads is a simulable rigid body. Finite is not enough (mass 4.9e-324 passes "> 0"
