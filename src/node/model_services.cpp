@@ -116,6 +116,7 @@ bool SimulationNode::OnSpawnUrdfModel(SpawnModel::Request& req, SpawnModel::Resp
     description = *checked;
     UrdfSceneOptions options = parameters_.scene;  // the node's ~gravity, ~mu, ~friction_set, ...
     options.ground = false;                        // the world has its ground already
+    options.hold_joints.clear();                   // ~hold_joints names the start-up URDF's
     urdf = SceneFromUrdf(req.model_xml, options);  // one-line reasons, as at start-up
   } catch (const std::exception& e) {
     res.success = false;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace nonsmooth_sim::node {
 namespace {
@@ -60,6 +61,22 @@ class ParameterReader {
     if (!Get(name, &v)) return;
     if (v.getType() != XmlRpc::XmlRpcValue::TypeString) Fail(name, "expected a string");
     *value = static_cast<std::string>(v);
+  }
+  // A list of strings, or one string as a list of one (roscpp reads a command line's
+  // _name:=value as a string, never as a list).
+  void Strings(const std::string& name, std::vector<std::string>* values) const {
+    XmlRpc::XmlRpcValue v;
+    if (!Get(name, &v)) return;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+      values->push_back(static_cast<std::string>(v));
+      return;
+    }
+    const char* expected = "expected a list of strings, or one string";
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) Fail(name, expected);
+    for (int i = 0; i < v.size(); ++i) {
+      if (v[i].getType() != XmlRpc::XmlRpcValue::TypeString) Fail(name, expected);
+      values->push_back(static_cast<std::string>(v[i]));
+    }
   }
   std::optional<Eigen::VectorXd> Numbers(const std::string& name, int count) const {
     XmlRpc::XmlRpcValue v;
@@ -245,6 +262,8 @@ NodeParameters ReadNodeParameters(const ros::NodeHandle& nh, const ros::NodeHand
   p.scene.mu = r.Number("mu");
   p.scene.contact_radius = r.Number("contact_radius");
   p.scene.rolling_resistance = r.Number("rolling_resistance");
+  // the start-up URDF's joints held rigid (not applied to ~spawn_urdf_model's models)
+  r.Strings("hold_joints", &p.scene.hold_joints);
 
   // simulator and solver
   r.Number("time_step", &p.simulator.time_step);

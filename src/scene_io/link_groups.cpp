@@ -2,6 +2,7 @@
 #include "link_groups.h"
 
 #include <optional>
+#include <set>
 
 #include "nonsmooth_sim/scene_io/format.h"
 #include "nonsmooth_sim/scene_io/urdf_scene.h"
@@ -54,8 +55,9 @@ std::optional<double> HeldPosition(const urdf::Joint& joint) {
 }
 
 // The child link's frame in the parent's for a joint held at `q`: the joint origin, then the turn
-// by q about the axis (revolute, rad) or the shift by q along it (prismatic, m). The axis is
-// normalised, as KDL (robot_state_publisher) does.
+// by q about the axis (revolute, continuous: rad) or the shift by q along it (prismatic: m). The
+// axis is normalised, as KDL (robot_state_publisher) does. A planar joint is held only at 0
+// (ResolveHeldJoints).
 Eigen::Isometry3d HeldJointPose(const urdf::Joint& joint, double q) {
   Eigen::Isometry3d pose = ToEigen(joint.parent_to_joint_origin_transform);
   if (q == 0.0) return pose;
@@ -64,7 +66,7 @@ Eigen::Isometry3d HeldJointPose(const urdf::Joint& joint, double q) {
     throw UrdfError("urdf: " + JointLabel(joint) + " > axis: xyz=\"0 0 0\" gives no direction "
                     "to hold the joint at " + Format(q) + "; give a nonzero axis");
   }
-  if (joint.type == urdf::Joint::REVOLUTE) {
+  if (joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS) {
     pose.rotate(Eigen::AngleAxisd(q, axis.normalized()));
   } else {
     pose.translate(q * axis.normalized());
@@ -72,14 +74,8 @@ Eigen::Isometry3d HeldJointPose(const urdf::Joint& joint, double q) {
   return pose;
 }
 
-// "0.1 kg and 2 collisions": the mass and the collisions of a group's links; "" for none.
-std::string Cargo(const LinkGroup& group) {
-  double mass = 0.0;
-  std::size_t collisions = 0;
-  for (const LinkGroup::Member& member : group.members) {
-    if (member.link->inertial) mass += member.link->inertial->mass;
-    collisions += member.link->collision_array.size();
-  }
+// "0.1 kg and 2 collisions"; "" for none.
+std::string Cargo(double mass, std::size_t collisions) {
   std::string cargo = mass > 0.0 ? Format(mass) + " kg" : "";
   if (collisions > 0) {
     cargo += (cargo.empty() ? "" : " and ") + std::to_string(collisions) +
@@ -88,10 +84,97 @@ std::string Cargo(const LinkGroup& group) {
   return cargo;
 }
 
+// The mass and the collisions of a group's links.
+std::string Cargo(const LinkGroup& group) {
+  double mass = 0.0;
+  std::size_t collisions = 0;
+  for (const LinkGroup::Member& member : group.members) {
+    if (member.link->inertial) mass += member.link->inertial->mass;
+    collisions += member.link->collision_array.size();
+  }
+  return Cargo(mass, collisions);
+}
+
+bool Moves(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
+         joint.type == urdf::Joint::PRISMATIC || joint.type == urdf::Joint::PLANAR;
+}
+
+// " m" for a prismatic joint's position, " rad" for a revolute or continuous one's.
+const char* Unit(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::PRISMATIC ? " m" : " rad";
+}
+
+constexpr const char* kHoldOption = "the option hold_joints";
+
+// What a hold may name: "allowed: ...; the joints that move here: "a" (continuous), ...".
+std::string HoldAllowed(const urdf::ModelInterface& model) {
+  std::string list;
+  for (const auto& [name, joint] : model.joints_) {  // by name
+    if (joint && Moves(*joint)) list += (list.empty() ? "" : ", ") + JointLabel(*joint);
+  }
+  return "allowed: a revolute, continuous, prismatic or planar joint; the joints that move "
+         "here: " + (list.empty() ? std::string("none") : list);
+}
+
+[[noreturn]] void FailHold(const std::string& where, const std::string& reason) {
+  throw UrdfError("urdf: " + where + ": " + reason);
+}
+
+// Throws unless `name` is a joint of `model` that moves and `q` a position it can be held at.
+// `where`: the block's <hold> element or the option (then q = 0, the option's position).
+void CheckHold(const urdf::ModelInterface& model, const std::string& where,
+               const std::string& name, double q) {
+  const auto fail = [&where](const std::string& reason) { FailHold(where, reason); };
+  const urdf::JointConstSharedPtr joint = model.getJoint(name);
+  if (!joint) FailHold(where, "no joint named " + Quoted(name) + "; " + HoldAllowed(model));
+  if (joint->type == urdf::Joint::FIXED) {
+    fail(JointLabel(*joint) + " does not move, there is nothing to hold (its link is merged "
+         "already); " + HoldAllowed(model));
+  }
+  if (!Moves(*joint)) {
+    fail(JointLabel(*joint) + " makes its link a free body of its own, not a joint to hold "
+         "(make it fixed to merge the link); " + HoldAllowed(model));
+  }
+  if (joint->type == urdf::Joint::PLANAR && q != 0.0) {
+    fail(JointLabel(*joint) + " can be held only at its zero position, not at " + Format(q) +
+         " (a planar joint has two shifts and a turn, one position cannot give them); allowed: "
+         "no position, or position=\"0\"");
+  }
+  const bool limited =
+      joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC;
+  if (limited && joint->limits && !(q >= joint->limits->lower && q <= joint->limits->upper)) {
+    const std::string range = "[" + Format(joint->limits->lower) + ", " +
+                              Format(joint->limits->upper) + "]" + Unit(*joint);
+    if (where == kHoldOption) {
+      fail(JointLabel(*joint) + " would be held at 0" + Unit(*joint) + ", outside its limits " +
+           range + "; give a position within them in <nonsmooth_sim joint=" + Quoted(name) +
+           "><hold position=\"...\"/></nonsmooth_sim>");
+    }
+    fail(JointLabel(*joint) + ": position " + Format(q) + Unit(*joint) +
+         " is outside its limits; allowed: " + range + " (its <limit> lower and upper)");
+  }
+}
+
+// The warning of a joint held by the user's opt-in (one line).
+std::string HoldWarning(const urdf::Joint& joint, const HeldJoint& held, const urdf::Link& child,
+                        const std::string& parent) {
+  const std::string at = joint.type == urdf::Joint::PLANAR
+                             ? "at its zero position"
+                             : "at " + Format(held.position) + Unit(joint);
+  std::string cargo = Cargo(child.inertial ? child.inertial->mass : 0.0,
+                            child.collision_array.size());
+  if (cargo.empty()) cargo = "no mass, no collision";
+  return "urdf: " + JointLabel(joint) + " is held rigid " + at + " by " + held.source + ": its " +
+         LinkLabel(child.name) + " (" + cargo + ") is merged into its parent " +
+         LinkLabel(parent) + "; the simulator has no joints";
+}
+
 class Grouper {
  public:
-  Grouper(const urdf::ModelInterface& model, std::vector<std::string>* warnings)
-      : model_(model), warnings_(warnings) {}
+  Grouper(const urdf::ModelInterface& model, const HeldJoints& held,
+          std::vector<std::string>* warnings)
+      : model_(model), held_(held), warnings_(warnings) {}
 
   // The group of `link` (attached by `joint`, nullptr for the root), then the groups below it.
   void Collect(const urdf::Link& link, const urdf::Joint* joint,
@@ -111,8 +194,12 @@ class Grouper {
         const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
         if (!child) continue;
         const Eigen::Isometry3d origin = pose * ToEigen(j->parent_to_joint_origin_transform);
+        const auto held = held_.find(j->name);
         if (j->type == urdf::Joint::FIXED) {
           self(self, *child, origin);
+        } else if (held != held_.end()) {  // the user's opt-in, checked by ResolveHeldJoints
+          warnings_->push_back(HoldWarning(*j, held->second, *child, member.name));
+          self(self, *child, pose * HeldJointPose(*j, held->second.position));
         } else if (const std::optional<double> q = HeldPosition(*j)) {
           warnings_->push_back(
               "urdf: " + JointLabel(*j) + " has lower = upper = " + Format(*q) +
@@ -173,19 +260,46 @@ class Grouper {
         (group.members.size() > 1 ? " with the links fixed to it" : "") +
         ", but the simulator has no joints, only free bodies: make it fixed to merge the link "
         "into its parent, or floating to make it a body of its own" +
-        (limited ? " (a joint with lower = upper cannot move and is merged as fixed)" : ""));
+        (limited ? " (a joint with lower = upper cannot move and is merged as fixed)" : "") +
+        "; or hold it rigid without editing it: <nonsmooth_sim joint=" + Quoted(joint.name) +
+        "><hold/></nonsmooth_sim>, or the loader option hold_joints (simulate --hold-joint, the "
+        "node's ~hold_joints)");
   }
 
   const urdf::ModelInterface& model_;
+  const HeldJoints& held_;
   std::vector<std::string>* warnings_;
   std::vector<LinkGroup> groups_;
 };
 
 }  // namespace
 
-std::vector<LinkGroup> GroupLinks(const urdf::ModelInterface& model,
+HeldJoints ResolveHeldJoints(const urdf::ModelInterface& model,
+                             const std::vector<JointHold>& blocks,
+                             const std::vector<std::string>& option) {
+  HeldJoints held;
+  for (const JointHold& hold : blocks) {
+    const double q = hold.position.value_or(0.0);
+    CheckHold(model, hold.where, hold.joint, q);
+    held[hold.joint] = {q, "<nonsmooth_sim joint=" + Quoted(hold.joint) + "> (line " +
+                               std::to_string(hold.line) + ")"};
+  }
+  std::set<std::string> named;  // a name given twice holds once
+  for (const std::string& name : option) {
+    if (!named.insert(name).second) continue;
+    if (const auto it = held.find(name); it != held.end()) {
+      it->second.source += std::string(" and ") + kHoldOption;  // at the block's position
+      continue;
+    }
+    CheckHold(model, kHoldOption, name, 0.0);
+    held[name] = {0.0, kHoldOption};
+  }
+  return held;
+}
+
+std::vector<LinkGroup> GroupLinks(const urdf::ModelInterface& model, const HeldJoints& held,
                                   std::vector<std::string>* warnings) {
-  Grouper grouper(model, warnings);
+  Grouper grouper(model, held, warnings);
   grouper.Collect(*model.getRoot(), nullptr, Eigen::Isometry3d::Identity());
   return std::move(grouper).Groups();
 }

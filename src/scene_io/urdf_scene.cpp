@@ -256,7 +256,9 @@ class Builder {
     result_.scene.gravity = Eigen::Vector3d(0.0, 0.0, -options_.gravity);
     result_.scene.collision_table = options_.collision_table;
     const urdf::Link& root = *model_.getRoot();
-    groups_ = GroupLinks(model_, &result_.warnings);
+    // the joints the user holds rigid (checked against the model first), then the groups
+    const HeldJoints held = ResolveHeldJoints(model_, xml_.joint_holds, options_.hold_joints);
+    groups_ = GroupLinks(model_, held, &result_.warnings);
     // bodies in the document order of their links; the world group (the root's) first
     std::stable_sort(groups_.begin(), groups_.end(), [&](const LinkGroup& a, const LinkGroup& b) {
       const auto rank = [&](const LinkGroup& g) {
@@ -615,6 +617,13 @@ void ValidateUrdfSceneOptions(const UrdfSceneOptions& options) {
   }
   if (!IsFrictionSet(options.friction_set)) {
     throw std::invalid_argument("friction_set must be one of " + FrictionSetNameList());
+  }
+  for (const std::string& joint : options.hold_joints) {
+    try {
+      CheckNameLength("joint", joint);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("hold_joints: ") + e.what());
+    }
   }
   if (options.max_hull_vertices < 4 || options.max_hull_vertices > kMaxHullVerticesBound) {
     throw std::invalid_argument("max_hull_vertices = " +

@@ -28,6 +28,9 @@ std::string Describe(const XMLElement* element) {
     if (const char* ref = e->Attribute("reference")) {
       part += " reference=\"" + std::string(ref) + "\"";
     }
+    if (const char* joint = e->Attribute("joint")) {
+      part += " joint=\"" + std::string(joint) + "\"";
+    }
     path = path.empty() ? part : part + " > " + path;
   }
   return path;
@@ -323,14 +326,60 @@ ShapeOverride ReadShapeOverride(const XMLElement* collision) {
   return result;
 }
 
+// <nonsmooth_sim joint="j">: exactly one <hold/> or <hold position="q"/>, one per joint in the file
+// (the joint, its type and q's range are checked against the model: link_groups.h).
+void ReadJointBlock(const XMLElement* block, UrdfXml* result) {
+  static const char* kAllowed =
+      "<hold/> or <hold position=\"q\"/> (q in rad for revolute and continuous joints, in m "
+      "for prismatic ones; default 0)";
+  const std::string joint = block->Attribute("joint");
+  if (block->Attribute("reference") != nullptr) {
+    Fail(block, "attributes reference and joint in one block; a block is about one link "
+                "(reference=\"link\") or one joint (joint=\"joint\")");
+  }
+  if (joint.empty()) Fail(block, "attribute joint is empty; expected the name of a joint");
+  const XMLElement* hold = nullptr;
+  for (const XMLElement* e = block->FirstChildElement(); e != nullptr;
+       e = e->NextSiblingElement()) {
+    if (std::string(e->Name()) != "hold") {
+      Fail(e, "unknown element <" + std::string(e->Name()) +
+                  ">; allowed in <nonsmooth_sim joint=\"...\">: " + kAllowed);
+    }
+    if (hold != nullptr) Fail(e, "<hold> given twice in one block");
+    hold = e;
+  }
+  if (hold == nullptr) Fail(block, std::string("no <hold>; expected ") + kAllowed);
+  RequireOnlyAttributes(hold, {"position"});
+  RequireNoChildren(hold);
+  JointHold result_hold;
+  result_hold.joint = joint;
+  result_hold.where = DescribeWithLine(hold);
+  result_hold.line = block->GetLineNum();
+  std::vector<double> values;
+  if (NumbersAttribute(hold, "position", 1, &values)) result_hold.position = values[0];
+  for (const JointHold& other : result->joint_holds) {
+    if (other.joint == joint) {
+      Fail(hold, "joint \"" + joint + "\" is already held by " + other.where +
+                     " (one <hold> per joint)");
+    }
+  }
+  result->joint_holds.push_back(std::move(result_hold));
+}
+
 // <nonsmooth_sim reference="link">: restitution, friction set, rolling resistance and shape
-// overrides of one link.
+// overrides of one link; <nonsmooth_sim joint="j">: a joint held rigid (ReadJointBlock).
 void ReadNonsmoothSim(const XMLElement* block, UrdfXml* result) {
   static const Names kElements = {
       "restitution", "friction_set", "rolling_resistance", "collision name=\"...\""};
-  RequireOnlyAttributes(block, {"reference"});
+  RequireOnlyAttributes(block, {"reference", "joint"});
+  if (block->Attribute("joint") != nullptr) {
+    ReadJointBlock(block, result);
+    return;
+  }
   const char* ref = block->Attribute("reference");
-  if (ref == nullptr) Fail(block, "attribute reference (a link name) is missing");
+  if (ref == nullptr) {
+    Fail(block, "attribute reference (a link name) or joint (a joint name) is missing");
+  }
   result->extension_blocks.push_back({ref, DescribeWithLine(block)});
   LinkSurface& surface = result->surfaces[ref];
   bool has_restitution = false;

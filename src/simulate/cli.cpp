@@ -187,6 +187,11 @@ const std::map<std::string, Setter>& ValueOptions() {
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.urdf_path = ParsePath(o, v);
        }},
+      {"--hold-joint",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         if (v.empty()) throw BadValue(o, v, "the name of a joint of the --urdf that moves");
+         c.hold_joints.push_back(v);
+       }},
       {"--initial",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.initial_path = ParsePath(o, v);
@@ -224,6 +229,9 @@ std::string UsageText() {
        "  --initial FILE        initial state of a --urdf scene (YAML, bodies: {<link>:\n"
        "                        {position, orientation, linear_velocity, angular_velocity}});\n"
        "                        default: the URDF pose, at rest\n"
+       "  --hold-joint NAME     hold the moving joint NAME of the --urdf rigid (at 0, or at the\n"
+       "                        position of its <nonsmooth_sim joint=...><hold>): its link is\n"
+       "                        merged into its parent (docs/urdf.md); repeatable\n"
        "  --schedule FILE       timed events of a --urdf scene (YAML: spawn, wrench,\n"
        "                        set_state, delete; docs/simulate.md); fixed steps only\n"
        "  --friction-set NAME   "
@@ -370,6 +378,9 @@ ParseResult ParseCommandLine(int argc, const char* const* argv) {
     if (!config.schedule_path.empty() &&
         (config.urdf_path.empty() || config.accuracy.tolerance > 0.0)) {
       throw Error{"--schedule needs --urdf and fixed steps (not --accuracy)"};
+    }
+    if (!config.hold_joints.empty() && config.urdf_path.empty()) {
+      throw Error{"--hold-joint needs --urdf (the built-in Tippe-Top has no joints)"};
     }
     if (!config.initial_path.empty() && config.urdf_path.empty()) {
       throw Error{"--initial needs --urdf (the built-in Tippe-Top takes --inclination, --spin)"};

@@ -6,6 +6,7 @@
 
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "nonsmooth_sim/core/adaptive_stepper.h"
 #include "nonsmooth_sim/core/simulator.h"
@@ -19,6 +20,9 @@ struct RunConfig {
   std::string urdf_path;             ///< empty: the built-in Tippe-Top (tippe_top.h)
   std::string initial_path;          ///< YAML initial state of a URDF scene; empty: URDF pose
   std::string schedule_path;         ///< --schedule: YAML events of a URDF scene; empty: none
+  /// --hold-joint NAME, repeatable: moving joints of the --urdf held rigid (the start-up scene
+  /// only, not --schedule's spawned models; UrdfSceneOptions::hold_joints)
+  std::vector<std::string> hold_joints;
   bool friction_set_given = false;   ///< --friction-set was given (a URDF's own sets otherwise)
   bool mu_given = false;             ///< --mu was given
   bool contact_radius_given = false; ///< --contact-radius was given

@@ -161,7 +161,9 @@ Scene BuildScene(const RunConfig& config, std::string* name) {
     scene.collision_table = RunCollisionTable();  // scheduled models may bring boxes
     return scene;
   }
-  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, UrdfOptions(config));
+  scene_io::UrdfSceneOptions options = UrdfOptions(config);
+  options.hold_joints = config.hold_joints;  // the --urdf's joints (not the spawned models')
+  scene_io::UrdfScene urdf = scene_io::LoadUrdfFile(config.urdf_path, options);
   *name = urdf.robot_name;
   for (const std::string& warning : urdf.warnings) {
     std::fprintf(stderr, "simulate: warning: %s\n", warning.c_str());

@@ -19,7 +19,7 @@ import xml.etree.ElementTree as ET
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 DOC = os.path.join(ROOT, "docs", "ros.md")
 
-PARAMETER = re.compile(r'\br\.(?:Number|Numbers|String|Bool|Integer|Get)\(\s*"([^"]+)"')
+PARAMETER = re.compile(r'\br\.(?:Number|Numbers|String|Strings|Bool|Integer|Get)\(\s*"([^"]+)"')
 SERVICE = re.compile(r'advertiseService\(\s*"([^"]+)"')
 # advertise<T>("name", ...) or advertise<T>("prefix/" + something, ...)
 TOPIC = re.compile(r'advertise<[^>]+>\(\s*"([^"]+)"(\s*\+)?')

@@ -15,12 +15,14 @@
 
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "bad_urdf_fixtures.h"
+#include "nonsmooth_sim/SpawnModel.h"
 
 extern char** environ;
 
@@ -156,6 +158,23 @@ TEST(NodeBadUrdf, BadParametersStopTheNodeWithOneClearLine) {
                      {"rolling_resistance", "[0, 1000] [m]"}, "rolling_resistance");
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_12", urdf, "_rolling_resistance:=abc"}),
                      {"~rolling_resistance", "expected a number"}, "rolling_resistance");
+  // ~hold_joints: a name that is no moving joint of the URDF (the loader's line, naming the
+  // joints that move), a number, a list with a number
+  const std::string gyroscope = "_urdf_file:=" + Fixture("moving_joint.urdf");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_13", gyroscope, "_hold_joints:=rotor"}),
+                     {"urdf: the option hold_joints: no joint named \"rotor\"",
+                      "the joints that move here: joint \"rotor_joint\" (continuous)"},
+                     "hold_joints rotor");
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_14", gyroscope, "_hold_joints:=1.5"}),
+                     {"parameter ~hold_joints: expected a list of strings, or one string"},
+                     "hold_joints 1.5");
+  XmlRpc::XmlRpcValue mixed;
+  mixed[0] = std::string("rotor_joint");
+  mixed[1] = 7;
+  ros::param::set("/bad_parameter_15/hold_joints", mixed);
+  ExpectOneErrorLine(RunNode({"__name:=bad_parameter_15", gyroscope}),
+                     {"parameter ~hold_joints: expected a list of strings, or one string"},
+                     "hold_joints [rotor_joint, 7]");
   // neither ~urdf_file nor robot_description (this test's launch file sets none)
   ExpectOneErrorLine(RunNode({"__name:=bad_parameter_6"}), {"no URDF", "robot_description"},
                      "no URDF");
@@ -283,6 +302,67 @@ TEST(NodeBadUrdf, ABodyThatCanTouchNothingIsAWarningInTheLogAndInDiagnostics) {
   const std::size_t first = all.find(warning);
   EXPECT_NE(first, std::string::npos) << all;
   EXPECT_EQ(all.find(warning, first + 1), std::string::npos) << "warned twice:\n" << all;
+}
+
+// The gyroscope refused above (a rotor with mass on a continuous joint) starts with ~hold_joints
+// naming its joint, as a list (rosparam, a launch file) or as one string (the command line), and
+// says once that the rotor is held. A gyroscope spawned into it is not held by ~hold_joints (it
+// names the start-up URDF's joints), only by its own <nonsmooth_sim joint> block.
+TEST(NodeBadUrdf, TheGyroscopeStartsWithItsRotorJointHeld) {
+  const std::string gyroscope = "_urdf_file:=" + Fixture("moving_joint.urdf");
+  XmlRpc::XmlRpcValue list;
+  list[0] = std::string("rotor_joint");
+  ros::param::set("/held_list/hold_joints", list);
+  const std::vector<std::vector<std::string>> runs = {
+      {"__name:=held_list", gyroscope, "_paused:=true"},
+      {"__name:=held_string", gyroscope, "_paused:=true", "_hold_joints:=rotor_joint"}};
+  // ~hold_joints is the start-up URDF's: a spawned gyroscope holds only by its own block
+  std::ifstream file(Fixture("moving_joint.urdf"));
+  const std::string gyroscope_xml((std::istreambuf_iterator<char>(file)),
+                                  std::istreambuf_iterator<char>());
+  std::string held_by_block = gyroscope_xml;
+  held_by_block.insert(held_by_block.find("</robot>"),
+                       "<nonsmooth_sim joint=\"rotor_joint\"><hold/></nonsmooth_sim>");
+  std::vector<SpawnModel> spawns(2);
+  spawns[0].request.model_name = "unheld";
+  spawns[0].request.model_xml = gyroscope_xml;
+  spawns[1].request.model_name = "held";
+  spawns[1].request.model_xml = held_by_block;
+  for (std::size_t k = 0; k < spawns.size(); ++k) {
+    spawns[k].request.initial_pose.position.x = 1.0 + static_cast<double>(k);
+    spawns[k].request.initial_pose.orientation.w = 1.0;
+  }
+  std::vector<bool> called(spawns.size(), false);
+  for (const std::vector<std::string>& args : runs) {
+    const std::string node = "/" + args[0].substr(8) + "/";
+    bool services_up = false;
+    const NodeRun run = RunNode(args, [&] {
+      services_up = ros::service::exists(node + "get_state", false);
+      if (services_up && args[0] == "__name:=held_list") {
+        for (std::size_t k = 0; k < spawns.size(); ++k) {
+          called[k] = ros::service::call(node + "spawn_urdf_model", spawns[k]);
+        }
+      }
+      return services_up;
+    });
+    EXPECT_TRUE(services_up) << args[0] << ": stderr:\n" << run.err;
+    EXPECT_FALSE(run.exited) << args[0] << ": exit code " << run.exit_code << ", stderr:\n"
+                             << run.err;
+    const std::string all = run.out + run.err;
+    const std::string warning = "urdf: joint \"rotor_joint\" (continuous) is held rigid at 0 rad "
+                                "by the option hold_joints: its link \"rotor\" (0.1 kg and 1 "
+                                "collision) is merged into its parent link \"frame\"";
+    const std::size_t first = all.find(warning);
+    EXPECT_NE(first, std::string::npos) << args[0] << ":\n" << all;
+    EXPECT_EQ(all.find(warning, first + 1), std::string::npos) << "warned twice:\n" << all;
+  }
+  ASSERT_TRUE(called[0] && called[1]) << "a ~spawn_urdf_model call failed";
+  EXPECT_FALSE(spawns[0].response.success);
+  EXPECT_NE(spawns[0].response.status_message.find(
+                "joint \"rotor_joint\" (continuous) moves link \"rotor\""),
+            std::string::npos)
+      << spawns[0].response.status_message;
+  EXPECT_TRUE(spawns[1].response.success) << spawns[1].response.status_message;
 }
 
 TEST(NodeBadUrdf, TheGoodUrdfStartsWithTheSameCommandLine) {

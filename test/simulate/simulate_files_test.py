@@ -3,7 +3,8 @@
 exit code 2, before reading them (a FIFO without a writer must not hang it, /dev/zero must not be
 read until memory runs out); an exception the loader does not expect (out of memory) is one line
 and exit code 4 (docs/simulate.md, "Exit codes"). A URDF the loader refuses (a link with mass on
-a moving joint) is one line and exit code 2 as well.
+a moving joint) is one line and exit code 2 as well; with --hold-joint it loads, and an unknown
+joint name is one line and exit code 2.
 
   simulate_files_test.py <simulate executable> <source dir>
 """
@@ -91,6 +92,38 @@ class SimulateFiles(unittest.TestCase):
                             "(continuous) moves link \"rotor\"",
                             "make it fixed to merge the link into its parent, or floating to "
                             "make it a body of its own")
+
+    def test_hold_joint_holds_the_rotor_and_refuses_what_it_cannot_hold(self):
+        # --hold-joint NAME (repeatable): the gyroscope that was refused above loads, its rotor
+        # merged into the frame (one body in the CSV, one warning saying so); a name that is no
+        # moving joint of the URDF is one line and exit 2, as is --hold-joint without --urdf
+        gyroscope = os.path.join(SOURCE, "test", "node", "fixtures", "moving_joint.urdf")
+        csv = os.path.join(self.tmp.name, "gyroscope.csv")
+        returncode, lines = run(["--urdf", gyroscope, "--hold-joint", "rotor_joint",
+                                 "--hold-joint=rotor_joint", "--duration", "0.002", "--dt",
+                                 "1e-4", "--decimate", "1", "--csv", csv])
+        self.assertEqual(returncode, 0, lines)
+        held = [line for line in lines if "is held rigid" in line]
+        self.assertEqual(held, ["simulate: warning: urdf: joint \"rotor_joint\" (continuous) is "
+                                "held rigid at 0 rad by the option hold_joints: its link "
+                                "\"rotor\" (0.1 kg and 1 collision) is merged into its parent "
+                                "link \"frame\"; the simulator has no joints"])
+        with open(csv) as f:
+            header = f.readline().strip().split(",")
+        self.assertIn("frame/x", header)
+        self.assertFalse([column for column in header if column.startswith("rotor/")], header)
+        self.expect_refusal(["--urdf", gyroscope, "--hold-joint", "rotor"],
+                            "simulate: urdf: " + gyroscope + ": the option hold_joints: no joint "
+                            "named \"rotor\"; allowed: a revolute, continuous, prismatic or "
+                            "planar joint; the joints that move here: joint \"rotor_joint\" "
+                            "(continuous)")
+        self.expect_refusal(["--hold-joint", "rotor_joint"],
+                            "simulate: --hold-joint needs --urdf")
+        self.expect_refusal(["--urdf", gyroscope, "--hold-joint", ""],
+                            "simulate: invalid value '' for --hold-joint: expected the name of a "
+                            "joint of the --urdf that moves")
+        self.expect_refusal(["--urdf", gyroscope, "--hold-joint"],
+                            "simulate: missing value for --hold-joint")
 
     def test_out_of_memory_is_one_line_and_exit_4(self):
         # the CSV is reserved up front: 10^6 rows (decimate 10) of 20 columns, 160 MB, beyond

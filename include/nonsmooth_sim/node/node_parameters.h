@@ -40,6 +40,7 @@ struct NodeParameters {
   std::string model_name;         ///< ~model_name: the URDF's model in the world services
                                   ///< (default: its <robot name>)
   UrdfSceneOptions scene;         ///< ~gravity, ~friction_set, ~mu, ~contact_radius,
+                                  ///< ~rolling_resistance, ~hold_joints (the start-up URDF's),
                                   ///< ~max_urdf_bytes (max_bytes: of ~urdf_file,
                                   ///< robot_description and ~spawn_urdf_model's model_xml);
                                   ///< collision_table: the defaults (main adds FCL's pairs)

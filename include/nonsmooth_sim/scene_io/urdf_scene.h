@@ -22,6 +22,13 @@
 //    or a link fixed to it has an <inertial> or a <collision>; without either it is left out with
 //    a warning. Floating joints below a left-out link still make free bodies (at the moving
 //    joint's zero position).
+//  - unless the user holds the joint rigid (as Drake's Joint::Lock):
+//      <nonsmooth_sim joint="j"><hold position="q"/></nonsmooth_sim>
+//    (q optional, default 0: rad for revolute and continuous, m along the axis for prismatic; a
+//    planar joint only at 0), or options.hold_joints (at 0, or at the block's q). A held joint is
+//    merged as one with lower = upper, at q, with one warning per joint. Refused with one line: a
+//    name that is no joint (the joints that move listed), a fixed or floating joint, q outside
+//    [lower, upper] of a revolute or prismatic joint, a planar joint's q ≠ 0.
 //  - bodies are listed in the document order of their links.
 //
 // Colliders:
@@ -67,7 +74,7 @@
 // the reason (not XML, no inertial on a body with collisions, mass ≤ 0, inertia not positive
 // definite, degenerate shapes, NaN or Inf in any number, a typo in a <nonsmooth_sim> block, a
 // collision name used twice, a static link with mass, a link with mass or collisions on a joint
-// that can move, ...). Overlapping bodies are not checked
+// that can move and is not held, a hold of a joint that does not exist or does not move, ...). Overlapping bodies are not checked
 // here (the simulator reports them).
 //
 // Bounds: what loads is a simulable rigid body. Finite is not enough (mass 4.9e-324 passes "> 0"
@@ -158,6 +165,11 @@ struct UrdfSceneOptions {
   /// vertices of a mesh's convex hull, at most (as MuJoCo's maxhullvert), in
   /// [4, kMaxHullVerticesBound]
   int max_hull_vertices = kDefaultMaxHullVertices;
+  /// moving joints (revolute, continuous, prismatic, planar) held rigid at 0, or at the position
+  /// of the URDF's <nonsmooth_sim joint="j"><hold position="q"/> for the same joint: merged as a
+  /// joint with lower = upper (a warning each). A name that is not a moving joint of the URDF
+  /// throws UrdfError; each name at most kMaxNameLength bytes.
+  std::vector<std::string> hold_joints;
   /// the pair functions of the scene (its Scene::collision_table): the core's closed forms, or
   /// with RegisterFclPairs (collision_fcl/fcl_pairs.h) also the convex pairs without one
   CollisionTable collision_table = CollisionTable::Defaults();

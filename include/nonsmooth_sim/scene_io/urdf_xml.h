@@ -48,6 +48,17 @@ struct ShapeOverride {
   std::string where;
 };
 
+/// <nonsmooth_sim joint="j"><hold position="q"/></nonsmooth_sim>: the user's opt-in to hold the
+/// moving joint "j" rigid at q (no position: 0), merged as a joint with lower = upper is. Checked
+/// against the model by the loader (src/scene_io/link_groups.h: the joint exists and moves, q
+/// within its limits).
+struct JointHold {
+  std::string joint;
+  std::optional<double> position;  ///< rad (revolute, continuous) or m (prismatic); unset: 0
+  std::string where;               ///< nonsmooth_sim joint="j" > hold (line 7), for error lines
+  int line = 0;                    ///< the line of the <nonsmooth_sim joint="j"> block
+};
+
 /// One <nonsmooth_sim reference=...> block, for the checks that need the model (does the link
 /// exist).
 struct ExtensionBlock {
@@ -60,7 +71,8 @@ struct UrdfXml {
   std::map<std::string, LinkSurface> surfaces;  ///< by link name; absent = defaults
   /// by link name, then collision name
   std::map<std::string, std::map<std::string, ShapeOverride>> shapes;
-  std::vector<ExtensionBlock> extension_blocks;  ///< every <nonsmooth_sim> block
+  std::vector<ExtensionBlock> extension_blocks;  ///< every <nonsmooth_sim reference> block
+  std::vector<JointHold> joint_holds;  ///< every <nonsmooth_sim joint> block; one per joint
   std::vector<std::string> gazebo_references;    ///< every <gazebo reference> (links or joints)
   std::vector<std::string> warnings;
 };
@@ -71,7 +83,7 @@ struct UrdfXml {
 /// with a <mass> and an <inertia>; the element-level bounds of urdf_scene.h ("Bounds": origins,
 /// masses, collision sizes, friction μ/μ₂/μ_τ in [0, kMaxFriction], patch radius in
 /// [0, kMaxLength]); the <nonsmooth_sim> blocks strictly: known elements and attributes only,
-/// values in range, shapes not degenerate. Returns the extension data.
+/// values in range, shapes not degenerate, one <hold> per joint. Returns the extension data.
 UrdfXml ParseUrdfXml(const std::string& xml);
 
 /// Parses one number exactly (no trailing characters, finite); false otherwise.
