@@ -45,6 +45,11 @@ add_test(NAME simulate_rolling_resistance_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_rolling_resistance_test.py
           $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
 set_tests_properties(simulate_rolling_resistance_test PROPERTIES TIMEOUT 300)
+# `simulate --contacts-csv`: a resting ball's weight, the Tippe-Top's spheres, one row per contact
+add_test(NAME simulate_contacts_csv_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_contacts_csv_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_contacts_csv_test PROPERTIES TIMEOUT 300)
 # `simulate --schedule` runs the documented example and each event has its effect in the CSV
 add_test(NAME simulate_schedule_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py

@@ -204,6 +204,10 @@ const std::map<std::string, Setter>& ValueOptions() {
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.csv_path = ParsePath(o, v);
        }},
+      {"--contacts-csv",
+       [](RunConfig& c, const std::string& o, const std::string& v) {
+         c.contacts_csv_path = ParsePath(o, v);
+       }},
       {"--summary",
        [](RunConfig& c, const std::string& o, const std::string& v) {
          c.summary_path = ParsePath(o, v);
@@ -303,8 +307,11 @@ std::string UsageText() {
        "                        vz wx wy wz (link frame; v of the centre of mass and omega in\n"
        "                        the world), energy, closed contacts, islands, deepest\n"
        "                        penetration, iterations, converged\n"
+       "  --contacts-csv FILE   the closed contacts of every CSV sample, one row each: t, dt,\n"
+       "                        contact (A/B), feature, point, normal, t1, gap, percussions\n"
+       "                        (n, t1, t2, tau, r1, r2; force = percussion/dt)\n"
        "  --summary FILE        JSON summary\n"
-       "  --decimate N          write every N-th step to the CSV (default 10)\n"
+       "  --decimate N          write every N-th step to the CSVs (default 10)\n"
        "  --quiet               no report on stdout, no progress bar\n"
        "  --list-friction-sets  print the friction set names, one per line, and exit\n"
        "  --help                this text\n"

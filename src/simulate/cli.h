@@ -32,6 +32,7 @@ struct RunConfig {
   AccuracyOptions accuracy;
   double duration = 8.0;             ///< [s], > 0
   std::string csv_path;              ///< empty: no CSV
+  std::string contacts_csv_path;     ///< empty: no contacts CSV (contact_csv.h)
   std::string summary_path;          ///< empty: no JSON summary
   long decimate = 10;                ///< CSV row every N steps (of --dt with --accuracy), ≥ 1
   bool quiet = false;                ///< no stdout report, no progress bar

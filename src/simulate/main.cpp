@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cli.h"
+#include "contact_csv.h"
 #include "monitor.h"
 #include "nonsmooth_sim/collision_fcl/fcl_pairs.h"
 #include "nonsmooth_sim/core/adaptive_stepper.h"
@@ -208,7 +209,7 @@ template <typename RecordRow>
 void RunFixed(const RunConfig& config, long steps, world::World* world, ScheduleRunner* schedule,
               RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
   Simulator* simulator = &world->sim();
-  const bool record = !config.csv_path.empty();
+  const bool record = !config.csv_path.empty() || !config.contacts_csv_path.empty();
   const double dt = config.options.time_step;
   StepStatistics stats;
   bool warned = false;
@@ -247,7 +248,7 @@ constexpr double kProgressInterval = 0.1;  // [s] of simulated time
 template <typename RecordRow>
 void RunAdaptive(const RunConfig& config, AdaptiveStepper* stepper, Simulator* simulator,
                  RunMonitor* monitor, ProgressBar* progress, const RecordRow& record_row) {
-  const bool record = !config.csv_path.empty();
+  const bool record = !config.csv_path.empty() || !config.contacts_csv_path.empty();
   const double csv_sample = static_cast<double>(config.decimate) * config.options.time_step;
   const double sample = record ? csv_sample : std::max(csv_sample, kProgressInterval);
   const long samples = std::max(1L, std::lround(std::ceil(config.duration / sample - 1e-9)));
@@ -299,19 +300,22 @@ int Run(const RunConfig& config) {
   ReportInitialOverlaps(simulator);
   const long steps = std::llround(config.duration / config.options.time_step);
 
-  if (!CanWrite(config.csv_path) || !CanWrite(config.summary_path)) {
-    std::fprintf(stderr, "simulate: cannot write %s\n",
-                 CanWrite(config.csv_path) ? config.summary_path.c_str()
-                                           : config.csv_path.c_str());
-    return kExitOutputError;
+  for (const std::string* path :
+       {&config.csv_path, &config.contacts_csv_path, &config.summary_path}) {
+    if (!CanWrite(*path)) {
+      std::fprintf(stderr, "simulate: cannot write %s\n", path->c_str());
+      return kExitOutputError;
+    }
   }
 
-  const bool record = !config.csv_path.empty();
+  const bool record = !config.csv_path.empty() || !config.contacts_csv_path.empty();
   // the Tippe-Top keeps its columns; a URDF scene gets per-body ones
   const long rows = record ? steps / config.decimate + 2 : 0;
   std::optional<CsvRecorder> tippe_csv;
   std::optional<BodyCsvRecorder> body_csv;
-  if (config.urdf_path.empty()) {
+  if (config.csv_path.empty()) {
+    // no time series (--contacts-csv alone)
+  } else if (config.urdf_path.empty()) {
     tippe_csv.emplace(simulator, rows);
   } else {
     if (schedule) {
@@ -320,9 +324,12 @@ int Run(const RunConfig& config) {
       body_csv.emplace(simulator, rows);
     }
   }
+  std::optional<ContactCsvRecorder> contact_csv;
+  if (!config.contacts_csv_path.empty()) contact_csv.emplace();
   auto record_row = [&](double t, const StepStatistics& s) {
     if (tippe_csv) tippe_csv->Record(t, simulator, s);
     if (body_csv) body_csv->Record(t, simulator, s);
+    if (contact_csv) contact_csv->Record(t, simulator);
   };
   RunMonitor monitor(config, simulator);
   ProgressBar progress(steps, config.duration, !config.quiet);
@@ -348,9 +355,13 @@ int Run(const RunConfig& config) {
   RunSummary summary = monitor.Finish(simulator);
   summary.wall_time_s = std::chrono::duration<double>(stop - start).count();
   summary.cpu_time_s = cpu_time;
-  if (record && !(tippe_csv ? tippe_csv->Write(config.csv_path)
-                            : body_csv->Write(config.csv_path))) {
+  if (!config.csv_path.empty() && !(tippe_csv ? tippe_csv->Write(config.csv_path)
+                                               : body_csv->Write(config.csv_path))) {
     std::fprintf(stderr, "simulate: cannot write %s\n", config.csv_path.c_str());
+    return kExitOutputError;
+  }
+  if (contact_csv && !contact_csv->Write(config.contacts_csv_path)) {
+    std::fprintf(stderr, "simulate: cannot write %s\n", config.contacts_csv_path.c_str());
     return kExitOutputError;
   }
   summary.output_wall_time_s =
