@@ -140,6 +140,7 @@ std::shared_ptr<const RevolutionProfile> MakeRevolutionProfile(
   }
   if (profile->arcs.empty()) Refuse("the meridian points span no area (all on a line)");
   profile->arcs.back().theta_end = kPi;
+  for (RevolutionArc& arc : profile->arcs) arc.cos_end = std::cos(arc.theta_end);
   for (std::size_t k = 0; k + 1 < profile->arcs.size(); ++k) {
     const double length = (ArcStart(*profile, static_cast<int>(k) + 1) -
                            ArcEnd(*profile, static_cast<int>(k))).norm();
@@ -148,12 +149,18 @@ std::shared_ptr<const RevolutionProfile> MakeRevolutionProfile(
   return profile;
 }
 
-Eigen::Vector2d ProfilePoint(const RevolutionProfile& profile, double theta, int* arc) {
+Eigen::Vector2d ProfilePoint(const RevolutionProfile& profile, const Eigen::Vector2d& u,
+                             int* arc) {
+  // θ ≤ θ_end ⇔ cos θ ≥ cos θ_end on [0, π]
   const auto it = std::lower_bound(
-      profile.arcs.begin(), profile.arcs.end() - 1, theta,
-      [](const RevolutionArc& a, double value) { return a.theta_end < value; });
+      profile.arcs.begin(), profile.arcs.end() - 1, u.y(),
+      [](const RevolutionArc& a, double cos_theta) { return a.cos_end > cos_theta; });
   if (arc != nullptr) *arc = static_cast<int>(it - profile.arcs.begin());
-  return it->centre + it->radius * U(theta);
+  return it->centre + it->radius * u;
+}
+
+Eigen::Vector2d ProfilePoint(const RevolutionProfile& profile, double theta, int* arc) {
+  return ProfilePoint(profile, U(theta), arc);
 }
 
 Eigen::Vector2d ArcStart(const RevolutionProfile& profile, int k) {
@@ -168,16 +175,16 @@ Eigen::Vector2d ArcEnd(const RevolutionProfile& profile, int k) {
 
 MeridianDirection SplitDirection(const Eigen::Vector3d& d) {
   MeridianDirection result;
-  const double s = std::hypot(d.x(), d.y());
-  result.theta = std::atan2(s, d.z());
+  const double s = std::sqrt(d.x() * d.x() + d.y() * d.y());
+  const double length = std::sqrt(s * s + d.z() * d.z());
+  result.u = Eigen::Vector2d(s / length, d.z() / length);
   if (s > 0.0) result.radial = Eigen::Vector3d(d.x() / s, d.y() / s, 0.0);
-  result.sin_theta = s / d.norm();
   return result;
 }
 
 Eigen::Vector3d RevolutionSupport(const RevolutionProfile& profile, const Eigen::Vector3d& d) {
   const MeridianDirection split = SplitDirection(d);
-  return AtAzimuth(ProfilePoint(profile, split.theta), split.radial);
+  return AtAzimuth(ProfilePoint(profile, split.u), split.radial);
 }
 
 double RevolutionVolume(const RevolutionProfile& profile) {

@@ -26,6 +26,7 @@ namespace nonsmooth_sim {
 
 struct RevolutionArc {
   double theta_end = 0.0;  ///< its normals run from the previous arc's theta_end (0 first) [rad]
+  double cos_end = 1.0;    ///< cos(theta_end): the lookup compares cosines (no trigonometry)
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< (ρ, z) [m]
   double radius = 0.0;                               ///< [m], > 0
   /// length of the straight stretch from its end to the next arc's start [m] (0: they meet,
@@ -53,7 +54,11 @@ inline constexpr double kMergeFraction = 0.1;
 std::shared_ptr<const RevolutionProfile> MakeRevolutionProfile(
     const std::vector<Eigen::Vector2d>& meridian, double rounding);
 
-/// The meridian point of normal angle θ ∈ [0, π] (ρ ≥ 0, z) and the index of its arc.
+/// The meridian point (ρ ≥ 0, z) whose outward normal is u = (sin θ, cos θ), θ ∈ [0, π] (unit),
+/// and the index of its arc: the first whose cos_end ≤ cos θ.
+Eigen::Vector2d ProfilePoint(const RevolutionProfile& profile, const Eigen::Vector2d& u,
+                             int* arc = nullptr);
+/// The same for the normal angle θ.
 Eigen::Vector2d ProfilePoint(const RevolutionProfile& profile, double theta, int* arc = nullptr);
 
 /// The start point (normal angle of the previous arc's end) of arc k, (ρ, z).
@@ -61,12 +66,12 @@ Eigen::Vector2d ArcStart(const RevolutionProfile& profile, int k);
 /// The end point of arc k, (ρ, z).
 Eigen::Vector2d ArcEnd(const RevolutionProfile& profile, int k);
 
-/// The direction d (shape frame, any length > 0) split as the profile sees it: θ = its angle from
-/// +z, `radial` its unit horizontal part (x̂ when d ∥ z).
+/// The direction d (shape frame, any length > 0) split as the profile sees it: u = (sin θ, cos θ)
+/// = (|d_xy|, d_z)/|d| with θ its angle from +z, `radial` its unit horizontal part (x̂ when
+/// d ∥ z).
 struct MeridianDirection {
-  double theta = 0.0;
+  Eigen::Vector2d u = Eigen::Vector2d(0.0, 1.0);
   Eigen::Vector3d radial = Eigen::Vector3d::UnitX();
-  double sin_theta = 0.0;  ///< |d_xy|/|d|
 };
 MeridianDirection SplitDirection(const Eigen::Vector3d& d);
 

@@ -4,7 +4,6 @@
 
 #include "nonsmooth_sim/core/collision/plane_contact.h"
 #include "nonsmooth_sim/core/collision/plane_cylinder.h"
-#include "nonsmooth_sim/core/constants.h"
 
 namespace nonsmooth_sim {
 
@@ -17,9 +16,9 @@ int CollidePlaneRevolution(const Shape& /*plane*/, const Eigen::Isometry3d& pose
   const MeridianDirection split =
       SplitDirection(-(pose_body.linear().transpose() * PlaneNormal(pose_plane)));
   // a flat disc at the pole facing the plane, lying flat: four face points
-  const bool top = split.theta < 0.5 * kPi;
+  const bool top = split.u.y() > 0.0;
   const double disc = top ? profile.top_disc_radius : profile.bottom_disc_radius;
-  if (disc > 0.0 && 2.0 * disc * split.sin_theta <= kFlatFaceTolerance) {
+  if (disc > 0.0 && 2.0 * disc * split.u.x() <= kFlatFaceTolerance) {
     const double rho = DiscPatchRadius(disc);
     const Eigen::Vector3d centre(0.0, 0.0, top ? profile.top_z : profile.bottom_z);
     ContactGeometry face[4];
@@ -40,7 +39,7 @@ int CollidePlaneRevolution(const Shape& /*plane*/, const Eigen::Isometry3d& pose
     if (contact.gap <= margin) out[count++] = contact;
   };
   int k = 0;
-  add(ProfilePoint(profile, split.theta, &k), split.radial, /*feature=*/0);
+  add(ProfilePoint(profile, split.u, &k), split.radial, /*feature=*/0);
   // the stretch before arc k: to the previous arc, or across a flat disc at the top
   if (k > 0 && profile.arcs[k - 1].stretch > 0.0) {
     add(ArcEnd(profile, k - 1), split.radial, 1 + 2 * k);

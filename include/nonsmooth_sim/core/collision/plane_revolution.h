@@ -1,6 +1,7 @@
 // Plane–body of revolution, closed form. The body (shape.h, revolution_profile.h) has its axis
 // along z of its frame B (pose R_B, o_B); d = −R_Bᵀ n is the direction of the plane's normal into
-// the body, split into its angle θ from the axis and its azimuth ê (SplitDirection).
+// the body, split into u(θ) = (sin θ, cos θ), θ its angle from the axis, and its azimuth ê
+// (SplitDirection; no trigonometry: u is d's horizontal length and height, normalised).
 //
 //   support     point_b = o_B + R_B (ρ(θ) ê + z(θ) ẑ),  (ρ, z)(θ) = c_k + r_k u(θ) on the arc k
 //               whose normals hold θ,                                      feature 0;
