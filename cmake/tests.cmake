@@ -50,6 +50,11 @@ add_test(NAME simulate_contacts_csv_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_contacts_csv_test.py
           $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
 set_tests_properties(simulate_contacts_csv_test PROPERTIES TIMEOUT 300)
+# scripts/dev/mesh_tippe_top's URDFs through `simulate`: the mesh top inverts with the spheres
+add_test(NAME simulate_mesh_tippe_top_test
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_mesh_tippe_top_test.py
+          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+set_tests_properties(simulate_mesh_tippe_top_test PROPERTIES TIMEOUT 300)
 # `simulate --schedule` runs the documented example and each event has its effect in the CSV
 add_test(NAME simulate_schedule_test
   COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py
