@@ -26,40 +26,31 @@ nonsmooth_sim_add_gtests(DIR test/reference PREFIX reference LIBRARIES nonsmooth
 # core): "scenes.<Suite>.<Test>"; the derivations and numbers they check are in docs/scenes.md.
 nonsmooth_sim_add_gtests(DIR test/scenes PREFIX scenes LIBRARIES nonsmooth_sim_scene_io
                          nonsmooth_sim_core nonsmooth_sim_rolling_reference)
-# `simulate` with devices, FIFOs, oversize files and out of memory: one line and a documented
-# exit code (docs/simulate.md, "Exit codes")
-add_test(NAME simulate_files_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_files_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-# the sanitizer (if any) is passed on: a sanitizer's runtime cannot start under the test's
-# address-space limit, so the out-of-memory case is skipped in sanitized builds
-set_tests_properties(simulate_files_test PROPERTIES TIMEOUT 300
+# `simulate` through its command line: every test/simulate/<name>.py, run by Debian's python3
+# with the executable and the source folder, 300 s at most.
+function(nonsmooth_sim_add_simulate_test name)
+  add_test(NAME ${name}
+    COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/${name}.py
+            $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 300)
+endfunction()
+# devices, FIFOs, oversize files and out of memory: one line and a documented exit code
+# (docs/simulate.md, "Exit codes"); the sanitizer (if any) is passed on: a sanitizer's runtime
+# cannot start under the test's address-space limit, so the out-of-memory case is skipped in
+# sanitized builds
+nonsmooth_sim_add_simulate_test(simulate_files_test)
+set_tests_properties(simulate_files_test PROPERTIES
   ENVIRONMENT "NONSMOOTH_SIM_SANITIZE=${NONSMOOTH_SIM_SANITIZE}")
-# `simulate` warns once for a body that can no longer touch anything and lists it in the summary
-add_test(NAME simulate_lost_bodies_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_lost_bodies_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_lost_bodies_test PROPERTIES TIMEOUT 300)
-# `simulate --rolling-resistance`: bad values refused, the rolling percussion in the CSV
-add_test(NAME simulate_rolling_resistance_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_rolling_resistance_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_rolling_resistance_test PROPERTIES TIMEOUT 300)
-# `simulate --contacts-csv`: a resting ball's weight, the Tippe-Top's spheres, one row per contact
-add_test(NAME simulate_contacts_csv_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_contacts_csv_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_contacts_csv_test PROPERTIES TIMEOUT 300)
-# scripts/dev/mesh_tippe_top's URDFs through `simulate`: the mesh top inverts with the spheres
-add_test(NAME simulate_mesh_tippe_top_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_mesh_tippe_top_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_mesh_tippe_top_test PROPERTIES TIMEOUT 300)
-# `simulate --schedule` runs the documented example and each event has its effect in the CSV
-add_test(NAME simulate_schedule_test
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/simulate/simulate_schedule_test.py
-          $<TARGET_FILE:simulate> ${PROJECT_SOURCE_DIR})
-set_tests_properties(simulate_schedule_test PROPERTIES TIMEOUT 300)
+# a body that can no longer touch anything: warned once and listed in the summary
+nonsmooth_sim_add_simulate_test(simulate_lost_bodies_test)
+# --rolling-resistance: bad values refused, the rolling percussion in the CSV
+nonsmooth_sim_add_simulate_test(simulate_rolling_resistance_test)
+# --contacts-csv: a resting ball's weight, the Tippe-Top's spheres, one row per contact
+nonsmooth_sim_add_simulate_test(simulate_contacts_csv_test)
+# scripts/dev/mesh_tippe_top's URDFs: the mesh top inverts with the spheres
+nonsmooth_sim_add_simulate_test(simulate_mesh_tippe_top_test)
+# --schedule runs the documented example and each event has its effect in the CSV
+nonsmooth_sim_add_simulate_test(simulate_schedule_test)
 
 # ---------------------------------------------------------------------------------------------
 # Benchmarks (Google Benchmark; timing lives here, never in tests). Run through scripts/dev/bench:
