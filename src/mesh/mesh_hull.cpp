@@ -95,8 +95,11 @@ std::vector<Eigen::Vector3d> ReadMeshVertices(const std::string& bytes,
   return vertices;
 }
 
-std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d>& input,
-                                               int max_vertices) {
+namespace {
+
+// HullOfPoints with max_vertices = 0: no cap.
+std::shared_ptr<const ConvexHull> Hull(const std::vector<Eigen::Vector3d>& input,
+                                       int max_vertices) {
   // each point once: an STL repeats every vertex in each of its triangles, and qhull given
   // repeated points may report a vertex that is none of them (measured: 1e-9 m off on an
   // icosphere's STL)
@@ -110,10 +113,6 @@ std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d
     throw std::invalid_argument("has " + std::to_string(points.size()) +
                                 " distinct vertices: a solid needs at least 4");
   }
-  if (max_vertices < 4 || max_vertices > kMaxHullVerticesBound) {
-    throw std::invalid_argument("the hull's vertex cap " + std::to_string(max_vertices) +
-                                " must be in [4, " + std::to_string(kMaxHullVerticesBound) + "]");
-  }
   std::vector<coordT> coordinates;
   coordinates.reserve(3 * points.size());
   for (const Eigen::Vector3d& p : points) {
@@ -122,7 +121,7 @@ std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d
   }
   // default merging in 3-d (C-0, Qx): coplanar facets become one face; TA caps the vertices
   std::string options = "qhull";
-  if (points.size() > static_cast<std::size_t>(max_vertices)) {
+  if (max_vertices > 0 && points.size() > static_cast<std::size_t>(max_vertices)) {
     options += " TA" + std::to_string(max_vertices - 4);
   }
   Qhull qhull;
@@ -172,6 +171,21 @@ std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("its convex hull is degenerate (") + e.what() + ")");
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d>& points,
+                                               int max_vertices) {
+  if (max_vertices < 4 || max_vertices > kMaxHullVerticesBound) {
+    throw std::invalid_argument("the hull's vertex cap " + std::to_string(max_vertices) +
+                                " must be in [4, " + std::to_string(kMaxHullVerticesBound) + "]");
+  }
+  return Hull(points, max_vertices);
+}
+
+std::shared_ptr<const ConvexHull> FullHullOfPoints(const std::vector<Eigen::Vector3d>& points) {
+  return Hull(points, 0);
 }
 
 double HullWidth(const ConvexHull& hull) {

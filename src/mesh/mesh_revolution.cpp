@@ -14,7 +14,9 @@
 namespace nonsmooth_sim::mesh {
 namespace {
 
-constexpr int kCheckAngles = 2048;   // normal angles of the vertices' check
+constexpr int kCheckAngles = 512;      // normal angles of the vertices' check
+constexpr int kSupportAngles = 32;     // the support functions' check: normal angles
+constexpr int kSupportAzimuths = 37;   // and azimuths (prime: off any mesh's sectors)
 constexpr int kTessellationAngles = 64;
 
 std::string Vector(const Eigen::Vector3d& v) {
@@ -77,7 +79,8 @@ BodyOfRevolution FitBodyOfRevolution(const std::vector<Eigen::Vector3d>& points,
     throw std::invalid_argument("axis (" + Vector(axis) + ") is not a direction; allowed: three "
                                 "finite numbers, not all 0");
   }
-  const std::shared_ptr<const ConvexHull> hull = HullOfPoints(points, kMaxHullVerticesBound);
+  // every vertex counts (no cap): a fine mesh's capped hull would be a subset's
+  const std::shared_ptr<const ConvexHull> hull = FullHullOfPoints(points);
   BodyOfRevolution result;
   // the frame: z along the axis, origin at the hull's centroid
   const Eigen::Vector3d z = axis.normalized();
@@ -85,22 +88,27 @@ BodyOfRevolution FitBodyOfRevolution(const std::vector<Eigen::Vector3d>& points,
   result.frame.linear() << x, z.cross(x), z;
   result.frame.translation() = HullCentroid(*hull);
   const Eigen::Isometry3d to_shape = result.frame.inverse();
+  std::vector<Eigen::Vector3d> vertices;  // the hull's, in the shape frame
   double size = 0.0;
-  for (const Eigen::Vector3d& v : hull->vertices) size = std::max(size, (to_shape * v).norm());
+  for (const Eigen::Vector3d& v : hull->vertices) {
+    vertices.push_back(to_shape * v);
+    size = std::max(size, vertices.back().norm());
+  }
   result.tolerance = tolerance.value_or(kDefaultRevolutionTolerance * size);
   if (!(std::isfinite(result.tolerance) && result.tolerance > 0.0)) {
     throw std::invalid_argument("tolerance " + std::to_string(result.tolerance) +
                                 " m: allowed: finite, > 0");
   }
+  // (every point inside the hull lies inside the body its vertices' profile describes)
   std::vector<Eigen::Vector2d> meridian;
-  meridian.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = to_shape * p;
-    meridian.emplace_back(q.head<2>().norm(), q.z());
-  }
+  for (const Eigen::Vector3d& q : vertices) meridian.emplace_back(q.head<2>().norm(), q.z());
   const std::shared_ptr<const RevolutionProfile> profile =
       MakeRevolutionProfile(meridian, 0.5 * result.tolerance);
 
+  Eigen::Vector3d worst = Eigen::Vector3d::Zero();
+  const auto consider = [&](double distance, const Eigen::Vector3d& where) {
+    if (distance > result.deviation) result.deviation = distance, worst = result.frame * where;
+  };
   // the hull's vertices against the fitted surface, in their meridian planes
   std::vector<Eigen::Vector2d> u(kCheckAngles + 1);
   std::vector<double> h(kCheckAngles + 1);
@@ -109,23 +117,41 @@ BodyOfRevolution FitBodyOfRevolution(const std::vector<Eigen::Vector3d>& points,
     u[j] = Eigen::Vector2d(std::sin(theta), std::cos(theta));
     h[j] = u[j].dot(ProfilePoint(*profile, theta));
   }
-  Eigen::Vector3d worst = Eigen::Vector3d::Zero();
-  const auto consider = [&](double distance, const Eigen::Vector3d& where) {
-    if (distance > result.deviation) result.deviation = distance, worst = where;
-  };
-  for (const Eigen::Vector3d& v : hull->vertices) {
-    const Eigen::Vector3d q = to_shape * v;
-    const Eigen::Vector2d m(q.head<2>().norm(), q.z());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
     double outside = -INFINITY, inside = INFINITY;
     for (int j = 0; j <= kCheckAngles; ++j) {
-      const double s = m.dot(u[j]) - h[j];
+      const double s = meridian[i].dot(u[j]) - h[j];
       outside = std::max(outside, s);
       inside = std::min(inside, -s);
     }
-    consider(outside > 0.0 ? outside : inside, v);
+    consider(outside > 0.0 ? outside : inside, vertices[i]);
   }
-  // the fitted surface's tessellation against the hull's boundary
-  // (at most kMaxHullVerticesBound points: qhull's cap would hull a subset)
+  // the fitted surface against the hull: their support functions on a grid of directions
+  for (int j = 0; j <= kSupportAngles; ++j) {
+    const double theta = kPi * j / kSupportAngles;
+    const Eigen::Vector2d rho_z = ProfilePoint(*profile, theta);
+    for (int k = 0; k < kSupportAzimuths; ++k) {
+      const double phi = 2.0 * kPi * k / kSupportAzimuths;
+      const Eigen::Vector3d radial(std::cos(phi), std::sin(phi), 0.0);
+      const Eigen::Vector3d normal = std::sin(theta) * radial + std::cos(theta) * Eigen::Vector3d::UnitZ();
+      const Eigen::Vector3d on_surface = AtAzimuth(rho_z, radial);
+      double mesh = -INFINITY;
+      for (const Eigen::Vector3d& q : vertices) mesh = std::max(mesh, normal.dot(q));
+      consider(std::abs(normal.dot(on_surface) - mesh), on_surface);
+    }
+  }
+  if (!(result.deviation <= result.tolerance)) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "is not a body of revolution about the axis (" << Vector(z)
+      << ") through its centroid (" << Vector(result.frame.translation())
+      << ") within the tolerance " << result.tolerance << " m: the fitted surface and the mesh's "
+      << "hull lie " << result.deviation << " m apart at (" << Vector(worst)
+      << "); allowed: a mesh of revolution about that axis, or a larger tolerance";
+    throw std::invalid_argument(s.str());
+  }
+  // the tessellation for FCL (at most kMaxHullVerticesBound points: qhull's cap would hull a
+  // subset)
   std::vector<Eigen::Vector3d> tessellation;
   const std::vector<Eigen::Vector2d> rings = TessellationProfile(*profile);
   const int ring_sectors = std::min(
@@ -137,24 +163,6 @@ BodyOfRevolution FitBodyOfRevolution(const std::vector<Eigen::Vector3d>& points,
       tessellation.push_back(
           AtAzimuth(rho_z, Eigen::Vector3d(std::cos(phi), std::sin(phi), 0.0)));
     }
-  }
-  for (const Eigen::Vector3d& t : tessellation) {
-    const Eigen::Vector3d x_mesh = result.frame * t;
-    double s = -INFINITY;
-    for (int f = 0; f < hull->face_count; ++f) {
-      s = std::max(s, hull->face_normal[f].dot(x_mesh - hull->face_centroid[f]));
-    }
-    consider(std::abs(s), x_mesh);
-  }
-  if (!(result.deviation <= result.tolerance)) {
-    std::ostringstream s;
-    s.precision(3);
-    s << "is not a body of revolution about the axis (" << Vector(z)
-      << ") through its centroid (" << Vector(result.frame.translation())
-      << ") within the tolerance " << result.tolerance << " m: the fitted surface and the mesh's "
-      << "hull lie " << result.deviation << " m apart at (" << Vector(worst)
-      << "); allowed: a mesh of revolution about that axis, or a larger tolerance";
-    throw std::invalid_argument(s.str());
   }
   result.shape = Shape::Revolution(profile, HullOfPoints(tessellation, kMaxHullVerticesBound));
   return result;

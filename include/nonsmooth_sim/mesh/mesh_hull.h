@@ -35,6 +35,10 @@ std::vector<Eigen::Vector3d> ReadMeshVertices(const std::string& bytes,
 std::shared_ptr<const ConvexHull> HullOfPoints(const std::vector<Eigen::Vector3d>& points,
                                                int max_vertices);
 
+/// The hull of every one of `points`, without a cap (HullOfPoints' checks and errors otherwise):
+/// to measure a mesh (mesh_revolution.h), not to collide with.
+std::shared_ptr<const ConvexHull> FullHullOfPoints(const std::vector<Eigen::Vector3d>& points);
+
 /// The thinnest width of a hull: min over its faces of max_i ν_f·(v_i − p_f) [m] (ν_f its outward
 /// normal, p_f a vertex of it); 0 for a flat one.
 double HullWidth(const ConvexHull& hull);

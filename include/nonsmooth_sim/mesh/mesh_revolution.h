@@ -2,13 +2,15 @@
 // revolution_profile.h): a faceted hull rolls as a polygon, which a top must not (docs/urdf.md,
 // "Bodies of revolution").
 //
-// The axis: the given direction through the centroid of the vertices' convex hull (a body of
-// revolution's centroid lies on its axis). The profile: every vertex's (ρ, z) about that axis,
-// rounded within τ/2 (MakeRevolutionProfile). The check, both ways, against the vertices' hull H:
+// The axis: the given direction through the centroid of the vertices' convex hull H (every
+// vertex counted, no cap; a body of revolution's centroid lies on its axis). The profile: the
+// (ρ, z) of H's vertices about that axis, rounded within τ/2 (MakeRevolutionProfile). The
+// check, both ways:
 //   - every vertex of H lies within τ of the fitted surface (in its meridian plane: the distance
-//     to the profile's boundary, from its support function on 2048 normal angles);
-//   - every point of the fitted surface's tessellation (below) lies within τ of H's boundary
-//     (max over H's faces of ν_f·(x − p_f): exact inside, a lower bound outside).
+//     to the profile's boundary, from its support function on 513 normal angles);
+//   - the support functions of H and of the fitted body differ by at most τ on 33 × 37
+//     directions (normal angle × azimuth; over all directions that difference is the Hausdorff
+//     distance of two convex bodies).
 // The largest of these distances is the fit's deviation; above τ the mesh is refused. A UV
 // mesh of M sectors deviates by ρ(1 − cos(π/M)) between its vertices (M = 48: 0.2 % of ρ).
 //
