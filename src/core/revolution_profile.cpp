@@ -87,8 +87,8 @@ std::shared_ptr<const RevolutionProfile> MakeRevolutionProfile(
   std::rotate(walk.begin(),
               std::find(walk.begin(), walk.end(), Point(0.0, z_max)), walk.end());
   walk.resize(std::find(walk.begin(), walk.end(), Point(0.0, z_min)) - walk.begin() + 1);
-  // merge points closer than kMergeFraction τ (keeping the poles), then points off the axis
-  // closer to it than that, then corners that do not turn
+  // merge points closer than kMergeFraction τ to the last one kept or to the bottom pole (the
+  // poles stay; a corner that does not turn gets no arc below)
   const double merge = kMergeFraction * rounding;
   std::vector<Point> chain{walk.front()};
   for (std::size_t i = 1; i + 1 < walk.size(); ++i) {
