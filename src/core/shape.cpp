@@ -220,6 +220,34 @@ std::shared_ptr<const ConvexHull> MakeConvexHull(std::vector<Eigen::Vector3d> ve
   if (hull->face_count < 4) {
     RejectHull(std::to_string(hull->face_count) + " faces: must be at least 4");
   }
+  // each vertex's neighbours along the faces' edges and its faces
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+  std::vector<std::vector<int>> incident(static_cast<std::size_t>(n));
+  for (int face = 0; face < hull->face_count; ++face) {
+    const int start = hull->face_start[static_cast<std::size_t>(face)];
+    const int count = f[static_cast<std::size_t>(start)];
+    for (int k = 1; k <= count; ++k) {
+      const int a = f[static_cast<std::size_t>(start + k)];
+      const int b = f[static_cast<std::size_t>(start + k % count + 1)];
+      neighbours[static_cast<std::size_t>(a)].push_back(b);
+      neighbours[static_cast<std::size_t>(b)].push_back(a);
+      incident[static_cast<std::size_t>(a)].push_back(face);
+    }
+  }
+  hull->connected = true;
+  const auto compress = [](std::vector<std::vector<int>>& lists, std::vector<int>* start,
+                           std::vector<int>* flat) {
+    start->push_back(0);
+    for (std::vector<int>& list : lists) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      flat->insert(flat->end(), list.begin(), list.end());
+      start->push_back(static_cast<int>(flat->size()));
+    }
+  };
+  for (const std::vector<int>& list : incident) hull->connected = hull->connected && !list.empty();
+  compress(neighbours, &hull->neighbour_start, &hull->neighbours);
+  compress(incident, &hull->vertex_face_start, &hull->vertex_faces);
   return hull;
 }
 

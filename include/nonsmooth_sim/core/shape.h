@@ -66,6 +66,13 @@ struct ConvexHull {
   /// on it [m] (plane_hull.h)
   std::vector<double> face_patch_radius;
   double bounding_radius = 0.0;  ///< max |v_i| [m]
+  // per vertex, compressed (vertex i's entries are [start[i], start[i + 1])), by MakeConvexHull:
+  std::vector<int> neighbour_start;  ///< its neighbours along the faces' edges, ascending
+  std::vector<int> neighbours;
+  std::vector<int> vertex_face_start;  ///< the faces it is a vertex of, ascending
+  std::vector<int> vertex_faces;
+  /// every vertex on a face: the edges connect them all (walks on them find supports)
+  bool connected = false;
 };
 
 /// Vertices of a mesh's hull, at most (as MuJoCo's maxhullvert): the loader's default

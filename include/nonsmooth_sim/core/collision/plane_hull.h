@@ -22,6 +22,15 @@
 //   vertex      point_b = o_H + R_H v_i,   feature i.
 //
 // For every point gap = n·(point_b − o_P), point_a = point_b − gap n (plane_contact.h).
+//
+// The search walks the hull's edges (ConvexHull::neighbours): steepest descent from vertex 0 to
+// the lowest vertex (a linear function on a convex polyhedron has no other local minimum), then
+// the vertices within the margin by their neighbours (its sublevel set is connected along the
+// edges), and f* among their faces (a face with no vertex within the margin cannot touch). The
+// contacts are those of scanning every vertex and face, bit for bit (plane_hull_walk_test), at
+// a cost that grows with what is near the plane: the Tippe-Top as a 256-vertex hull, 88 814 →
+// 12 599 instructions per step (docs/urdf.md). A hull whose edges do not reach every vertex is
+// scanned.
 #ifndef NONSMOOTH_SIM_CORE_COLLISION_PLANE_HULL_H_
 #define NONSMOOTH_SIM_CORE_COLLISION_PLANE_HULL_H_
 
