@@ -29,14 +29,20 @@ using namespace collision_test;  // NOLINT
 constexpr ShapeType kOthers[] = {ShapeType::kSphere, ShapeType::kCapsule, ShapeType::kEllipsoid,
                                  ShapeType::kCylinder, ShapeType::kBox, ShapeType::kConvexHull};
 
-TEST(FclHull, RegisteredAgainstEveryShapeButThePlane) {
+// A mesh's shapes, its hull and its body of revolution (plane_revolution.h), against every shape
+// and each other by FCL; against the plane by their closed forms.
+TEST(FclHull, MeshShapesRegisteredAgainstEveryShapeButThePlane) {
   CollisionTable table = CollisionTable::Defaults();
   RegisterFclPairs(&table);
-  for (ShapeType other : kOthers) {
-    EXPECT_EQ(table.Find(other, ShapeType::kConvexHull), &CollideFcl);
-    EXPECT_EQ(table.Find(ShapeType::kConvexHull, other), &CollideFcl);
+  for (ShapeType mesh : {ShapeType::kConvexHull, ShapeType::kRevolution}) {
+    for (ShapeType other : kOthers) {
+      EXPECT_EQ(table.Find(other, mesh), &CollideFcl) << ShapeTypeName(other);
+      EXPECT_EQ(table.Find(mesh, other), &CollideFcl) << ShapeTypeName(other);
+    }
+    EXPECT_EQ(table.Find(mesh, ShapeType::kRevolution), &CollideFcl);
+    EXPECT_NE(table.Find(ShapeType::kPlane, mesh), nullptr);
+    EXPECT_NE(table.Find(ShapeType::kPlane, mesh), &CollideFcl);
   }
-  EXPECT_NE(table.Find(ShapeType::kPlane, ShapeType::kConvexHull), &CollideFcl);
 }
 
 // A hull (a box of random half extents off its frame's origin) and a shape of `type`, B moved so
